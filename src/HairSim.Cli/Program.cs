@@ -1,0 +1,30 @@
+using HairSim.Cli;
+
+// hairsim <command> [options]: each command lives in its own file (RunCommand.cs, …).
+var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
+{
+    ["run"] = (RunCommand.Help, RunCommand.Execute),
+};
+
+if (args.Length == 0 || args[0] is "-h" or "--help" or "help")
+{
+    Console.WriteLine("hairsim: HairSheet's headless console.\n\nCommands:");
+    foreach (var (name, c) in commands) Console.WriteLine($"  {name,-10} {c.Help}");
+    Console.WriteLine("\nWith no command: run (the reference scene, 10 s).");
+    if (args.Length == 0) return RunCommand.Execute(new CliArgs([]));
+    return 0;
+}
+if (!commands.TryGetValue(args[0], out var cmd))
+{
+    Console.Error.WriteLine($"Unknown command '{args[0]}'. Try --help.");
+    return 2;
+}
+try
+{
+    return cmd.Run(new CliArgs(args[1..]));
+}
+catch (Exception e) when (e is ArgumentException or InvalidDataException or IOException or FormatException)
+{
+    Console.Error.WriteLine($"error: {e.Message}");
+    return 1;
+}

@@ -1,0 +1,35 @@
+using System.Numerics;
+
+namespace HairSim;
+
+/// <summary>
+/// Centripetal Catmull-Rom (knot spacing |ΔP|^½, Barry–Goldman evaluation). Chosen over uniform because
+/// strands across a sheet are unevenly spaced (jittered roots, motion bunches them): the centripetal form
+/// never forms cusps or self-intersections inside a segment (Yuksel, Schaefer, Keyser 2011), and it still
+/// passes through every control point. Coincident control points fall back to unit spacing, never NaN.
+/// </summary>
+public static class CatmullRom
+{
+    /// <summary>Point at t ∈ [0, 1] on the segment p1 → p2, with p0 and p3 the neighbours.</summary>
+    public static Vector3 Evaluate(Vector3 p0, Vector3 p1, Vector3 p2, Vector3 p3, float t)
+    {
+        float d01 = MathF.Sqrt(Vector3.Distance(p0, p1));
+        float d12 = MathF.Sqrt(Vector3.Distance(p1, p2));
+        float d23 = MathF.Sqrt(Vector3.Distance(p2, p3));
+        const float eps = 1e-6f;
+        if (d12 < eps) d12 = 1f;
+        if (d01 < eps) d01 = d12;
+        if (d23 < eps) d23 = d12;
+        float t0 = 0f, t1 = d01, t2 = t1 + d12, t3 = t2 + d23;
+        float u = t1 + t * d12;
+        var a1 = ((t1 - u) * p0 + (u - t0) * p1) / (t1 - t0);
+        var a2 = ((t2 - u) * p1 + (u - t1) * p2) / (t2 - t1);
+        var a3 = ((t3 - u) * p2 + (u - t2) * p3) / (t3 - t2);
+        var b1 = ((t2 - u) * a1 + (u - t0) * a2) / (t2 - t0);
+        var b2 = ((t3 - u) * a2 + (u - t1) * a3) / (t3 - t1);
+        return ((t2 - u) * b1 + (u - t1) * b2) / (t2 - t1);
+    }
+
+    /// <summary>End condition: a phantom neighbour mirrored through the end point.</summary>
+    public static Vector3 Mirror(Vector3 end, Vector3 inner) => 2f * end - inner;
+}

@@ -1,0 +1,123 @@
+using System.Numerics;
+
+namespace HairSim;
+
+public enum ColliderKind { Ellipsoid, Sphere, Capsule }
+
+/// <summary>
+/// A head-attached collider, in head space (it moves with the head). Plain data: the collide system
+/// turns it into world space once per substep. Constructors validate; a degenerate shape is refused.
+/// </summary>
+public readonly struct Collider
+{
+    public readonly ColliderKind Kind;
+    /// <summary>Ellipsoid/sphere centre, or capsule end A.</summary>
+    public readonly Vector3 Center;
+    /// <summary>Capsule end B (unused otherwise).</summary>
+    public readonly Vector3 End;
+    /// <summary>Ellipsoid semi-axes; for sphere and capsule X holds the radius.</summary>
+    public readonly Vector3 Radii;
+    /// <summary>Ellipsoid orientation relative to the head.</summary>
+    public readonly Quaternion Rotation;
+
+    private Collider(ColliderKind kind, Vector3 center, Vector3 end, Vector3 radii, Quaternion rotation)
+    {
+        Kind = kind; Center = center; End = end; Radii = radii; Rotation = rotation;
+    }
+
+    public float Radius => Radii.X;
+
+    public static Collider Ellipsoid(Vector3 center, Vector3 radii) => Ellipsoid(center, radii, Quaternion.Identity);
+
+    public static Collider Ellipsoid(Vector3 center, Vector3 radii, Quaternion rotation)
+    {
+        FiniteVec(center, nameof(center));
+        FiniteVec(radii, nameof(radii));
+        if (radii.X <= 1e-6f || radii.Y <= 1e-6f || radii.Z <= 1e-6f)
+            throw new ArgumentOutOfRangeException(nameof(radii), radii, "Ellipsoid radii must all be positive (> 1e-6).");
+        float len = rotation.Length();
+        if (!float.IsFinite(len) || len < 1e-6f) throw new ArgumentException("Ellipsoid rotation must be a finite non-zero quaternion.", nameof(rotation));
+        return new Collider(ColliderKind.Ellipsoid, center, center, radii, Quaternion.Normalize(rotation));
+    }
+
+    public static Collider Sphere(Vector3 center, float radius)
+    {
+        FiniteVec(center, nameof(center));
+        if (!float.IsFinite(radius) || radius <= 0f) throw new ArgumentOutOfRangeException(nameof(radius), radius, "Sphere radius must be positive and finite.");
+        return new Collider(ColliderKind.Sphere, center, center, new Vector3(radius), Quaternion.Identity);
+    }
+
+    /// <summary>A capsule between a and b; a == b is allowed and behaves as a sphere.</summary>
+    public static Collider Capsule(Vector3 a, Vector3 b, float radius)
+    {
+        FiniteVec(a, nameof(a)); FiniteVec(b, nameof(b));
+        if (!float.IsFinite(radius) || radius <= 0f) throw new ArgumentOutOfRangeException(nameof(radius), radius, "Capsule radius must be positive and finite.");
+        return new Collider(ColliderKind.Capsule, a, b, new Vector3(radius), Quaternion.Identity);
+    }
+
+    private static void FiniteVec(Vector3 v, string name)
+    {
+        if (!float.IsFinite(v.X) || !float.IsFinite(v.Y) || !float.IsFinite(v.Z))
+            throw new ArgumentException($"{name} must be finite, got {v}.", name);
+    }
+
+    /// <summary>This collider placed by a head pose.</summary>
+    public Collider ToWorld(in RigidTransform head) =>
+        new(Kind, head.TransformPoint(Center), head.TransformPoint(End), Radii, Quaternion.Normalize(head.Rotation * Rotation));
+
+    /// <summary>
+    /// If p is inside, the surface point it is pushed to and the outward unit normal there; otherwise false.
+    /// The ellipsoid uses the source's radial projection (SPEC A.4: towards the point on the surface in the
+    /// direction of p from the centre). A particle exactly at the centre is pushed along the collider's local +Y.
+    /// Double precision: this is the reference, and the fast path must agree with it.
+    /// </summary>
+    public bool Resolve(Vector3 p, out Vector3 surface, out Vector3 normal, out float depth)
+    {
+        switch (Kind)
+        {
+            case ColliderKind.Ellipsoid:
+            {
+                var inv = Quaternion.Conjugate(Rotation);
+                var l = Vector3.Transform(p - Center, inv);
+                double qx = l.X / (double)Radii.X, qy = l.Y / (double)Radii.Y, qz = l.Z / (double)Radii.Z;
+                double r = Math.Sqrt(qx * qx + qy * qy + qz * qz);
+                if (r >= 1.0) { surface = p; normal = default; depth = 0; return false; }
+                double sx, sy, sz; // local surface point
+                if (r < 1e-12) { sx = 0; sy = Radii.Y; sz = 0; }
+                else { sx = l.X / r; sy = l.Y / r; sz = l.Z / r; }
+                double nx = sx / ((double)Radii.X * Radii.X), ny = sy / ((double)Radii.Y * Radii.Y), nz = sz / ((double)Radii.Z * Radii.Z);
+                double nl = Math.Sqrt(nx * nx + ny * ny + nz * nz);
+                var sLocal = new Vector3((float)sx, (float)sy, (float)sz);
+                surface = Center + Vector3.Transform(sLocal, Rotation);
+                normal = Vector3.Transform(new Vector3((float)(nx / nl), (float)(ny / nl), (float)(nz / nl)), Rotation);
+                double ddx = sx - l.X, ddy = sy - l.Y, ddz = sz - l.Z;
+                depth = (float)Math.Sqrt(ddx * ddx + ddy * ddy + ddz * ddz);
+                return true;
+            }
+            case ColliderKind.Sphere:
+                return PushOutOfSphere(p, Center, Radius, out surface, out normal, out depth);
+            default:
+            {
+                var ab = End - Center;
+                double len2 = Vector3.Dot(ab, ab);
+                double t = len2 < 1e-18 ? 0 : Math.Clamp(Vector3.Dot(p - Center, ab) / len2, 0.0, 1.0);
+                var closest = Center + (float)t * ab;
+                return PushOutOfSphere(p, closest, Radius, out surface, out normal, out depth);
+            }
+        }
+    }
+
+    private static bool PushOutOfSphere(Vector3 p, Vector3 c, float radius, out Vector3 surface, out Vector3 normal, out float depth)
+    {
+        var d = p - c;
+        double dist = Math.Sqrt((double)d.X * d.X + (double)d.Y * d.Y + (double)d.Z * d.Z);
+        if (dist >= radius) { surface = p; normal = default; depth = 0; return false; }
+        normal = dist < 1e-12 ? Vector3.UnitY : new Vector3((float)(d.X / dist), (float)(d.Y / dist), (float)(d.Z / dist));
+        surface = c + normal * radius;
+        depth = (float)(radius - dist);
+        return true;
+    }
+
+    /// <summary>How deep p is inside (0 if outside), measured to the point Resolve would move it to.</summary>
+    public float Penetration(Vector3 p) => Resolve(p, out _, out _, out float d) ? d : 0f;
+}

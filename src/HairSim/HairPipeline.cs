@@ -1,0 +1,97 @@
+namespace HairSim;
+
+/// <summary>
+/// The systems a scene needs, in order, and the frame loop that runs them: one fork/join per frame,
+/// each job taking a block of strands through all substeps (strands do not interact).
+/// </summary>
+public sealed class HairPipeline
+{
+    private readonly HairScene _scene;
+    private readonly IHairSystem[] _substep;
+    private readonly IHairSystem[] _frameEnd;
+    private readonly IHairSystem[] _all;
+    private readonly IThreadDispatcher _dispatcher;
+    private readonly FrameContext _ctx = new();
+    private readonly Action<int> _substepJob, _frameEndJob;
+    private int _jobCount;
+
+    internal HairPipeline(HairScene scene, List<IHairSystem> systems, IThreadDispatcher dispatcher)
+    {
+        _scene = scene;
+        _all = systems.ToArray();
+        _substep = systems.FindAll(s => s.Phase == SystemPhase.Substep).ToArray();
+        _frameEnd = systems.FindAll(s => s.Phase == SystemPhase.FrameEnd).ToArray();
+        _dispatcher = dispatcher;
+        _substepJob = RunSubstepJob;
+        _frameEndJob = RunFrameEndJob;
+        SystemNames = Array.ConvertAll(_all, s => s.Name);
+    }
+
+    public IReadOnlyList<IHairSystem> Systems => _all;
+    public IReadOnlyList<string> SystemNames { get; }
+    public bool Contains(string systemName) => Array.IndexOf((string[])SystemNames, systemName) >= 0;
+    public HairScene Scene => _scene;
+    /// <summary>The context of the last frame (teleport flag, substep length, …).</summary>
+    public FrameContext LastFrame => _ctx;
+
+    /// <summary>Advances the scene by dt seconds while the head moves to <paramref name="headTarget"/>.</summary>
+    public void Step(float dt, RigidTransform headTarget)
+    {
+        if (!float.IsFinite(dt) || dt <= 0f || dt > 1f)
+            throw new ArgumentOutOfRangeException(nameof(dt), dt, "Frame time must be in (0, 1] seconds.");
+        var world = _scene.World;
+        var st = _scene.Settings;
+        var ctx = _ctx;
+        ctx.Settings = st;
+        ctx.Dt = dt;
+        ctx.Substeps = st.Substeps;
+        ctx.H = dt / st.Substeps;
+        ctx.HeadStart = world.Head;
+        ctx.HeadEnd = headTarget;
+        var delta = RigidTransform.Delta(world.Head, headTarget);
+        ctx.Teleported = (headTarget.Position - world.Head.Position).Length() > st.TeleportDistance || delta.Angle > st.TeleportAngle;
+        ctx.TeleportDelta = ctx.Teleported ? delta : RigidTransform.Identity;
+
+        if (ctx.SubstepHeads.Length < st.Substeps) ctx.SubstepHeads = new RigidTransform[st.Substeps];
+        for (int s = 0; s < st.Substeps; s++)
+            ctx.SubstepHeads[s] = ctx.Teleported ? headTarget
+                : RigidTransform.Interpolate(world.Head, headTarget, (s + 1) / (float)st.Substeps);
+
+        var colliders = _scene.Colliders;
+        int nc = colliders.Count;
+        if (ctx.SubstepColliders.Length < nc * st.Substeps) ctx.SubstepColliders = new Collider[nc * st.Substeps];
+        ctx.ColliderCount = nc;
+        for (int s = 0; s < st.Substeps; s++)
+            for (int c = 0; c < nc; c++)
+                ctx.SubstepColliders[s * nc + c] = colliders[c].ToWorld(ctx.SubstepHeads[s]);
+
+        if (_substep.Length > 0)
+        {
+            _jobCount = Math.Max(1, Math.Min(world.StrandCount, _dispatcher.ThreadCount == 1 ? 1 : _dispatcher.ThreadCount * 4));
+            _dispatcher.Run(_jobCount, _substepJob);
+        }
+        world.Head = headTarget;
+        if (_frameEnd.Length > 0)
+        {
+            _jobCount = Math.Max(1, Math.Min(world.SheetCount, _dispatcher.ThreadCount == 1 ? 1 : _dispatcher.ThreadCount * 4));
+            _dispatcher.Run(_jobCount, _frameEndJob);
+        }
+    }
+
+    private void RunSubstepJob(int job)
+    {
+        int n = _scene.World.StrandCount;
+        int begin = (int)((long)n * job / _jobCount), end = (int)((long)n * (job + 1) / _jobCount);
+        for (int s = 0; s < _ctx.Substeps; s++)
+            for (int k = 0; k < _substep.Length; k++)
+                _substep[k].Run(_scene, _ctx, s, begin, end);
+    }
+
+    private void RunFrameEndJob(int job)
+    {
+        int n = _scene.World.SheetCount;
+        int begin = (int)((long)n * job / _jobCount), end = (int)((long)n * (job + 1) / _jobCount);
+        for (int k = 0; k < _frameEnd.Length; k++)
+            _frameEnd[k].Run(_scene, _ctx, 0, begin, end);
+    }
+}

@@ -1,0 +1,279 @@
+using System.Numerics;
+
+namespace HairSim;
+
+/// <summary>
+/// Every particle of every strand, as flat struct-of-arrays buffers; strands and sheets are index ranges.
+/// Strand s owns particles [StrandFirst[s], StrandFirst[s] + StrandCapacity[s]); the first
+/// StrandParticleCount[s] of them are live (a cut lowers the count, an undo or regrow raises it again).
+/// Arrays never change size after construction, so the simulation allocates nothing per step.
+/// </summary>
+public sealed class HairWorld
+{
+    /// <summary>Upper bound on particles in one world (≈ 1.3 GB of particle data); larger requests are refused before allocating.</summary>
+    public const int MaxParticles = 16 * 1024 * 1024;
+    public const int MaxParticlesPerStrand = 4096;
+    public const int MaxStrandsPerSheet = 4096;
+
+    // ---- particles ----
+    public readonly float[] PosX, PosY, PosZ;
+    public readonly float[] VelX, VelY, VelZ;
+    /// <summary>0 for a pinned particle (roots): it follows the head instead of the solver.</summary>
+    public readonly float[] InvMass;
+    /// <summary>Rest distance from the previous particle of the strand (0 at the root).</summary>
+    public readonly float[] RestLength;
+    /// <summary>Rest pose in head space: pins follow it, reset returns to it, fit writes it.</summary>
+    public readonly float[] RestX, RestY, RestZ;
+    /// <summary>
+    /// Rest shape of the triple centred at each particle, in the triple's own frame (see <see cref="RestShape"/>):
+    /// axial offsets of previous, middle and next particle from the triple's centroid, and the bend height.
+    /// </summary>
+    public readonly float[] ShapePrev, ShapeMid, ShapeNext, ShapeBend;
+
+    // ---- strands ----
+    public readonly int[] StrandFirst;
+    public readonly int[] StrandCapacity;
+    public readonly int[] StrandParticleCount;
+    public readonly int[] StrandSheet;
+
+    // ---- sheets ----
+    public readonly int[] SheetFirstStrand;
+    public readonly int[] SheetStrandCount;
+
+    /// <summary>Current head pose; roots and colliders follow it.</summary>
+    public RigidTransform Head { get; internal set; } = RigidTransform.Identity;
+
+    /// <summary>Bumped by every edit that changes topology or rest data, so renderers and caches can notice.</summary>
+    public int EditStamp { get; private set; }
+
+    public int ParticleCount => PosX.Length;
+    public int StrandCount => StrandFirst.Length;
+    public int SheetCount => SheetFirstStrand.Length;
+    public int MaxStrandCapacity { get; }
+
+    /// <summary>A world of sheetCount sheets × strandsPerSheet strands × particlesPerStrand particles.</summary>
+    public HairWorld(int sheetCount, int strandsPerSheet, int particlesPerStrand)
+        : this(Uniform(Check(sheetCount, strandsPerSheet, particlesPerStrand), strandsPerSheet), Uniform(sheetCount * strandsPerSheet, particlesPerStrand))
+    { }
+
+    /// <summary>General layout: strands per sheet, then particle capacity per strand (in sheet order).</summary>
+    public HairWorld(ReadOnlySpan<int> strandsPerSheet, ReadOnlySpan<int> particlesPerStrand)
+    {
+        if (strandsPerSheet.Length == 0) throw new ArgumentException("A hair world needs at least one sheet.", nameof(strandsPerSheet));
+        long strands = 0;
+        foreach (int n in strandsPerSheet)
+        {
+            if (n < 1 || n > MaxStrandsPerSheet)
+                throw new ArgumentOutOfRangeException(nameof(strandsPerSheet), n, $"Strands per sheet must be in 1 … {MaxStrandsPerSheet}.");
+            strands += n;
+        }
+        if (strands != particlesPerStrand.Length)
+            throw new ArgumentException($"Sheets hold {strands} strands but {particlesPerStrand.Length} strand capacities were given.", nameof(particlesPerStrand));
+        long particles = 0;
+        int maxCap = 0;
+        foreach (int p in particlesPerStrand)
+        {
+            if (p < 2 || p > MaxParticlesPerStrand)
+                throw new ArgumentOutOfRangeException(nameof(particlesPerStrand), p, $"Particles per strand must be in 2 … {MaxParticlesPerStrand} (a root and a tip at least).");
+            particles += p;
+            maxCap = Math.Max(maxCap, p);
+        }
+        if (particles > MaxParticles)
+            throw new ArgumentOutOfRangeException(nameof(particlesPerStrand), particles, $"{particles:N0} particles exceed the limit of {MaxParticles:N0} per world.");
+
+        int np = (int)particles, ns = (int)strands;
+        PosX = new float[np]; PosY = new float[np]; PosZ = new float[np];
+        VelX = new float[np]; VelY = new float[np]; VelZ = new float[np];
+        InvMass = new float[np]; RestLength = new float[np];
+        RestX = new float[np]; RestY = new float[np]; RestZ = new float[np];
+        ShapePrev = new float[np]; ShapeMid = new float[np]; ShapeNext = new float[np]; ShapeBend = new float[np];
+        StrandFirst = new int[ns]; StrandCapacity = new int[ns]; StrandParticleCount = new int[ns]; StrandSheet = new int[ns];
+        SheetFirstStrand = new int[strandsPerSheet.Length]; SheetStrandCount = new int[strandsPerSheet.Length];
+        MaxStrandCapacity = maxCap;
+
+        int s = 0, first = 0;
+        for (int q = 0; q < strandsPerSheet.Length; q++)
+        {
+            SheetFirstStrand[q] = s;
+            SheetStrandCount[q] = strandsPerSheet[q];
+            for (int k = 0; k < strandsPerSheet[q]; k++, s++)
+            {
+                StrandFirst[s] = first;
+                StrandCapacity[s] = particlesPerStrand[s];
+                StrandParticleCount[s] = particlesPerStrand[s];
+                StrandSheet[s] = q;
+                first += particlesPerStrand[s];
+            }
+        }
+        Array.Fill(InvMass, 1f);
+    }
+
+    private static int Check(int sheets, int strandsPerSheet, int particlesPerStrand)
+    {
+        if (sheets < 1) throw new ArgumentOutOfRangeException(nameof(sheets), sheets, "Sheet count must be at least 1.");
+        if (strandsPerSheet < 1 || strandsPerSheet > MaxStrandsPerSheet)
+            throw new ArgumentOutOfRangeException(nameof(strandsPerSheet), strandsPerSheet, $"Strands per sheet must be in 1 … {MaxStrandsPerSheet}.");
+        if (particlesPerStrand < 2 || particlesPerStrand > MaxParticlesPerStrand)
+            throw new ArgumentOutOfRangeException(nameof(particlesPerStrand), particlesPerStrand, $"Particles per strand must be in 2 … {MaxParticlesPerStrand}.");
+        long total = (long)sheets * strandsPerSheet * particlesPerStrand;
+        if (total > MaxParticles)
+            throw new ArgumentOutOfRangeException(nameof(sheets), total, $"{total:N0} particles exceed the limit of {MaxParticles:N0} per world.");
+        return sheets;
+    }
+
+    private static int[] Uniform(int count, int value)
+    {
+        var a = new int[count];
+        Array.Fill(a, value);
+        return a;
+    }
+
+    // ---- access helpers (not for hot loops) ----
+    public Vector3 GetPosition(int i) => new(PosX[i], PosY[i], PosZ[i]);
+    public void SetPosition(int i, Vector3 p) { PosX[i] = p.X; PosY[i] = p.Y; PosZ[i] = p.Z; }
+    public Vector3 GetVelocity(int i) => new(VelX[i], VelY[i], VelZ[i]);
+    public void SetVelocity(int i, Vector3 v) { VelX[i] = v.X; VelY[i] = v.Y; VelZ[i] = v.Z; }
+    public Vector3 GetRest(int i) => new(RestX[i], RestY[i], RestZ[i]);
+    public int SkeletonStrand(int sheet) => SheetFirstStrand[sheet] + SheetStrandCount[sheet] / 2;
+    public int RootIndex(int strand) => StrandFirst[strand];
+    public int TipIndex(int strand) => StrandFirst[strand] + StrandParticleCount[strand] - 1;
+
+    /// <summary>Copies the live particles of a strand (world positions).</summary>
+    public Vector3[] GetStrandPositions(int strand)
+    {
+        var pts = new Vector3[StrandParticleCount[strand]];
+        for (int k = 0; k < pts.Length; k++) pts[k] = GetPosition(StrandFirst[strand] + k);
+        return pts;
+    }
+
+    /// <summary>
+    /// Sets a strand's rest pose (head space), rest lengths and rest shape from points, pins its first
+    /// <paramref name="pinned"/> particles and places it at rest under the current head pose.
+    /// The points may have fewer entries than the strand's capacity (a shorter strand).
+    /// </summary>
+    public void SetStrand(int strand, ReadOnlySpan<Vector3> restHeadSpace, int pinned = 1, bool straightRestShape = false)
+    {
+        if ((uint)strand >= (uint)StrandCount) throw new ArgumentOutOfRangeException(nameof(strand));
+        int cap = StrandCapacity[strand];
+        if (restHeadSpace.Length < 2 || restHeadSpace.Length > cap)
+            throw new ArgumentException($"A strand needs 2 … {cap} points, got {restHeadSpace.Length}.", nameof(restHeadSpace));
+        if (pinned < 1 || pinned > restHeadSpace.Length)
+            throw new ArgumentOutOfRangeException(nameof(pinned), pinned, "At least the root must be pinned, at most every point.");
+        for (int k = 0; k < restHeadSpace.Length; k++)
+        {
+            var p = restHeadSpace[k];
+            if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z))
+                throw new ArgumentException($"Point {k} of strand {strand} is not finite.", nameof(restHeadSpace));
+            if (k > 0 && Vector3.DistanceSquared(p, restHeadSpace[k - 1]) < 1e-18f)
+                throw new ArgumentException($"Points {k - 1} and {k} of strand {strand} coincide: zero-length segments are not allowed.", nameof(restHeadSpace));
+        }
+
+        int first = StrandFirst[strand];
+        int n = restHeadSpace.Length;
+        StrandParticleCount[strand] = n;
+        var head = Head;
+        for (int k = 0; k < cap; k++)
+        {
+            int i = first + k;
+            var p = restHeadSpace[Math.Min(k, n - 1)];
+            RestX[i] = p.X; RestY[i] = p.Y; RestZ[i] = p.Z;
+            RestLength[i] = k == 0 || k >= n ? 0f : Vector3.Distance(p, restHeadSpace[k - 1]);
+            InvMass[i] = k < pinned ? 0f : 1f;
+            SetPosition(i, head.TransformPoint(p));
+            VelX[i] = VelY[i] = VelZ[i] = 0f;
+        }
+        if (straightRestShape) RestShape.SetStraight(this, strand);
+        else RestShape.SetFromRestPose(this, strand);
+        MarkEdited();
+    }
+
+    /// <summary>Puts every live particle back at its rest pose under the current head, at rest.</summary>
+    public void ResetToRest()
+    {
+        var head = Head;
+        for (int i = 0; i < ParticleCount; i++)
+        {
+            SetPosition(i, head.TransformPoint(GetRest(i)));
+            VelX[i] = VelY[i] = VelZ[i] = 0f;
+        }
+    }
+
+    /// <summary>Moves the head without simulating: every particle is carried rigidly (used at load and for teleports).</summary>
+    public void PlaceHead(RigidTransform head)
+    {
+        var delta = RigidTransform.Delta(Head, head);
+        for (int i = 0; i < ParticleCount; i++)
+        {
+            SetPosition(i, delta.TransformPoint(GetPosition(i)));
+            SetVelocity(i, delta.TransformDirection(GetVelocity(i)));
+        }
+        Head = head;
+    }
+
+    public void MarkEdited() => EditStamp++;
+
+    /// <summary>Total rest length of the live part of all strands.</summary>
+    public double TotalRestLength()
+    {
+        double sum = 0;
+        for (int s = 0; s < StrandCount; s++)
+        {
+            int first = StrandFirst[s];
+            for (int k = 1; k < StrandParticleCount[s]; k++) sum += RestLength[first + k];
+        }
+        return sum;
+    }
+
+    /// <summary>A deep copy (undo snapshots, determinism tests, reference-vs-fast comparisons).</summary>
+    public HairWorld Clone()
+    {
+        var c = new HairWorld(SheetStrandCount, StrandCapacity);
+        CopyTo(c);
+        return c;
+    }
+
+    /// <summary>Copies all state into a world of identical layout.</summary>
+    public void CopyTo(HairWorld target)
+    {
+        if (!SameLayout(target)) throw new ArgumentException("Worlds differ in layout.", nameof(target));
+        float[][] src = Buffers(), dst = target.Buffers();
+        for (int b = 0; b < src.Length; b++) Array.Copy(src[b], dst[b], src[b].Length);
+        Array.Copy(StrandParticleCount, target.StrandParticleCount, StrandCount);
+        target.Head = Head;
+        target.EditStamp = EditStamp + 1;
+    }
+
+    public bool SameLayout(HairWorld other) =>
+        other.ParticleCount == ParticleCount && other.StrandCount == StrandCount && other.SheetCount == SheetCount &&
+        StrandCapacity.AsSpan().SequenceEqual(other.StrandCapacity) && SheetStrandCount.AsSpan().SequenceEqual(other.SheetStrandCount);
+
+    /// <summary>Bit-for-bit equality of every buffer, strand count and the head pose.</summary>
+    public bool BitEquals(HairWorld other)
+    {
+        if (!SameLayout(other) || !Head.Equals(other.Head)) return false;
+        if (!StrandParticleCount.AsSpan().SequenceEqual(other.StrandParticleCount)) return false;
+        float[][] a = Buffers(), b = other.Buffers();
+        for (int k = 0; k < a.Length; k++)
+            if (!System.Runtime.InteropServices.MemoryMarshal.AsBytes(a[k].AsSpan())
+                .SequenceEqual(System.Runtime.InteropServices.MemoryMarshal.AsBytes(b[k].AsSpan()))) return false;
+        return true;
+    }
+
+    /// <summary>All float buffers, in a fixed order (for copying, hashing and files).</summary>
+    public float[][] Buffers() =>
+        [PosX, PosY, PosZ, VelX, VelY, VelZ, InvMass, RestLength, RestX, RestY, RestZ, ShapePrev, ShapeMid, ShapeNext, ShapeBend];
+
+    /// <summary>Counts non-finite positions and velocities among live particles.</summary>
+    public int CountNonFinite()
+    {
+        int bad = 0;
+        for (int s = 0; s < StrandCount; s++)
+        {
+            int first = StrandFirst[s], end = first + StrandParticleCount[s];
+            for (int i = first; i < end; i++)
+                if (!float.IsFinite(PosX[i]) || !float.IsFinite(PosY[i]) || !float.IsFinite(PosZ[i]) ||
+                    !float.IsFinite(VelX[i]) || !float.IsFinite(VelY[i]) || !float.IsFinite(VelZ[i])) bad++;
+        }
+        return bad;
+    }
+}

@@ -1,0 +1,89 @@
+using System.Numerics;
+
+namespace HairSim;
+
+/// <summary>How shape-matching goals move particles.</summary>
+public enum ShapeMatchMode
+{
+    /// <summary>Müller et al. 2005: v += α(g − x)/h + h·f/m; x += h·v. Stable for α in [0, 1].</summary>
+    Muller,
+    /// <summary>The source's literal force: a = gravity + α(g − x), semi-implicit Euler. For comparison.</summary>
+    LiteralForce,
+}
+
+/// <summary>The inextensibility pass run after integration (the source has none).</summary>
+public enum LengthMode
+{
+    None,
+    /// <summary>Dynamic follow-the-leader (Müller et al. 2012): one root-to-tip sweep, exact lengths.</summary>
+    FollowTheLeader,
+    /// <summary>Position-based distance constraints, Gauss–Seidel, <see cref="SimulationSettings.LengthIterations"/> sweeps.</summary>
+    Pbd,
+}
+
+/// <summary>Which implementation of each system the pipeline uses.</summary>
+public enum SolverPath
+{
+    /// <summary>Plain scalar code in double precision, single-threaded: the oracle.</summary>
+    Reference,
+    /// <summary>The optimised implementation (falls back to the reference where a system has none).</summary>
+    Fast,
+}
+
+/// <summary>Solver parameters. Validate() rejects anything non-finite or out of range with a clear message.</summary>
+public sealed class SimulationSettings
+{
+    public Vector3 Gravity { get; set; } = new(0f, -9.81f, 0f);
+    /// <summary>Shape-matching stiffness α (Müller: 0 … 1 is stable; LiteralForce: a spring rate in 1/s²).</summary>
+    public float Alpha { get; set; } = 1f;
+    /// <summary>Pull towards the head-space rest pose (0 = off, as in the source); holds styled bangs in place.</summary>
+    public float GlobalShapeStiffness { get; set; }
+    public ShapeMatchMode Mode { get; set; } = ShapeMatchMode.Muller;
+    /// <summary>Velocity damping per second: v ← v·max(0, 1 − Damping·h).</summary>
+    public float Damping { get; set; } = 2f;
+    public int Substeps { get; set; } = 4;
+    public LengthMode Length { get; set; } = LengthMode.FollowTheLeader;
+    public int LengthIterations { get; set; } = 4;
+    /// <summary>Share of the follow-the-leader correction fed back into velocity (Müller 2012's s_damping).</summary>
+    public float LengthDamping { get; set; } = 0.9f;
+    /// <summary>Tangential velocity kept on contact with a collider (1 = frictionless sliding).</summary>
+    public float ContactSlide { get; set; } = 1f;
+    /// <summary>Speed limit in m/s, a guard against explosions (0 = off).</summary>
+    public float MaxSpeed { get; set; } = 40f;
+    /// <summary>Head moves farther than this in one frame count as a teleport: the hair is carried rigidly.</summary>
+    public float TeleportDistance { get; set; } = 0.5f;
+    /// <summary>Head turns more than this (radians) in one frame count as a teleport.</summary>
+    public float TeleportAngle { get; set; } = MathF.PI / 3f;
+    public SolverPath Path { get; set; } = SolverPath.Reference;
+
+    public SimulationSettings Clone() => (SimulationSettings)MemberwiseClone();
+
+    public void Validate()
+    {
+        Finite(Gravity.X, "Gravity"); Finite(Gravity.Y, "Gravity"); Finite(Gravity.Z, "Gravity");
+        Range(Alpha, 0f, 1000f, nameof(Alpha));
+        Range(GlobalShapeStiffness, 0f, 1f, nameof(GlobalShapeStiffness));
+        Range(Damping, 0f, 1000f, nameof(Damping));
+        if (Substeps < 1 || Substeps > 256) throw new ArgumentOutOfRangeException(nameof(Substeps), Substeps, "Substeps must be in 1 … 256.");
+        if (LengthIterations < 1 || LengthIterations > 256) throw new ArgumentOutOfRangeException(nameof(LengthIterations), LengthIterations, "Length iterations must be in 1 … 256.");
+        Range(LengthDamping, 0f, 1f, nameof(LengthDamping));
+        Range(ContactSlide, 0f, 1f, nameof(ContactSlide));
+        Range(MaxSpeed, 0f, 1e6f, nameof(MaxSpeed));
+        Range(TeleportDistance, 0f, 1e6f, nameof(TeleportDistance));
+        Range(TeleportAngle, 0f, MathF.PI, nameof(TeleportAngle));
+        if (!Enum.IsDefined(Mode)) throw new ArgumentOutOfRangeException(nameof(Mode));
+        if (!Enum.IsDefined(Length)) throw new ArgumentOutOfRangeException(nameof(Length));
+        if (!Enum.IsDefined(Path)) throw new ArgumentOutOfRangeException(nameof(Path));
+    }
+
+    private static void Finite(float v, string name)
+    {
+        if (!float.IsFinite(v)) throw new ArgumentException($"{name} must be finite, got {v}.", name);
+    }
+
+    private static void Range(float v, float lo, float hi, string name)
+    {
+        if (!float.IsFinite(v) || v < lo || v > hi)
+            throw new ArgumentOutOfRangeException(name, v, $"{name} must be in {lo} … {hi}.");
+    }
+}

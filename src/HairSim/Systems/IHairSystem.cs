@@ -1,0 +1,45 @@
+namespace HairSim;
+
+/// <summary>When a system runs, and over what range.</summary>
+public enum SystemPhase
+{
+    /// <summary>Every substep, over a range of strands (strands never interact, so ranges run in parallel).</summary>
+    Substep,
+    /// <summary>Once per frame after all substeps, over a range of sheets (e.g. render interpolation).</summary>
+    FrameEnd,
+}
+
+/// <summary>A behaviour over the world's data. Systems hold no per-particle state of their own.</summary>
+public interface IHairSystem
+{
+    string Name { get; }
+    SystemPhase Phase { get; }
+    /// <summary>Runs on strands (Substep) or sheets (FrameEnd) [begin, end). Must not allocate.</summary>
+    void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end);
+}
+
+/// <summary>Per-frame values shared by the systems; owned and reused by the pipeline (no per-step allocation).</summary>
+public sealed class FrameContext
+{
+    public float Dt { get; internal set; }
+    public int Substeps { get; internal set; }
+    /// <summary>Substep length h = Dt / Substeps.</summary>
+    public float H { get; internal set; }
+    public SimulationSettings Settings { get; internal set; } = new();
+    public RigidTransform HeadStart { get; internal set; } = RigidTransform.Identity;
+    public RigidTransform HeadEnd { get; internal set; } = RigidTransform.Identity;
+    /// <summary>True when the head jumped farther than the teleport limits this frame: hair is carried rigidly.</summary>
+    public bool Teleported { get; internal set; }
+    /// <summary>The rigid jump applied on a teleport frame.</summary>
+    public RigidTransform TeleportDelta { get; internal set; } = RigidTransform.Identity;
+
+    internal RigidTransform[] SubstepHeads = new RigidTransform[1];
+    internal Collider[] SubstepColliders = [];
+    internal int ColliderCount;
+
+    /// <summary>Head pose at the end of substep s (pins are placed there at the start of the substep).</summary>
+    public RigidTransform HeadAt(int substep) => SubstepHeads[substep];
+
+    /// <summary>World-space colliders for substep s.</summary>
+    public ReadOnlySpan<Collider> CollidersAt(int substep) => SubstepColliders.AsSpan(substep * ColliderCount, ColliderCount);
+}
