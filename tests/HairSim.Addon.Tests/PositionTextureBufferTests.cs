@@ -13,6 +13,7 @@ public class PositionTextureBufferTests
         rs.Counts[2] = 4; // as if cut
         var b = new PositionTextureBuffer(rs, StrandLook.Default);
         int live = b.Fill(rs);
+        var texels = b.Texels.ToArray();
         int expectedLive = 0;
         for (int r = 0; r < rs.StrandCount; r++)
         {
@@ -22,9 +23,9 @@ public class PositionTextureBufferTests
             {
                 var (x, y) = b.TexelOf(r, k);
                 int o = (y * b.Width + x) * 4;
-                var p = new Vector3(b.Texels[o], b.Texels[o + 1], b.Texels[o + 2]);
-                if (k < pts.Length) { AssertClose(pts[k], p, 0f); Assert.Equal(1f, b.Texels[o + 3]); }
-                else { AssertClose(pts[^1], p, 0f); Assert.Equal(0f, b.Texels[o + 3]); }
+                var p = new Vector3(texels[o], texels[o + 1], texels[o + 2]);
+                if (k < pts.Length) { AssertClose(pts[k], p, 0f); Assert.Equal(1f, texels[o + 3]); }
+                else { AssertClose(pts[^1], p, 0f); Assert.Equal(0f, texels[o + 3]); }
             }
         }
         Assert.Equal(expectedLive, live);
@@ -46,7 +47,7 @@ public class PositionTextureBufferTests
         var (x, y) = b.TexelOf(strands - 1, stride - 1);
         Assert.InRange(x, 0, b.Width - 1);
         Assert.InRange(y, 0, b.Height - 1);
-        Assert.Equal((long)b.Width * b.Height * 4, b.Texels.LongLength);
+        Assert.Equal((long)b.Width * b.Height * 16, b.TexelBytes.LongLength);
     }
 
     [Fact]

@@ -53,7 +53,8 @@ public class SegmentInstanceBufferTests
         Assert.Equal(expected, b.Fill(rs));
         Assert.True(b.VisibleInstances < b.MaxInstances);
         Assert.Same(buffer, b.Buffer);
-        Assert.Equal((long)expected * b.FloatsPerInstance * 4, b.BytesPerUpload);
+        Assert.Equal((long)expected * b.FloatsPerInstance * 4, b.VisibleBytes);
+        Assert.Equal((long)b.MaxInstances * b.FloatsPerInstance * 4, b.BytesPerUpload);
     }
 
     [Fact]

@@ -1,4 +1,5 @@
 using System.Numerics;
+using System.Runtime.InteropServices;
 using HairSim;
 
 namespace HairSheet.Logic;
@@ -33,7 +34,7 @@ public sealed class PositionTextureBuffer
         Width = StrandsPerRow * stride;
         Height = (renderStrands + StrandsPerRow - 1) / StrandsPerRow;
         if (Height > MaxTextureWidth) throw new ArgumentOutOfRangeException(nameof(renderStrands), renderStrands, "Too many render strands for one position texture.");
-        Texels = new float[(long)Width * Height * 4];
+        TexelBytes = new byte[(long)Width * Height * 4 * sizeof(float)];
         InstanceBuffer = new float[renderStrands * InstanceFloats];
         WriteInstances();
     }
@@ -47,13 +48,15 @@ public sealed class PositionTextureBuffer
     /// <summary>Texture size in texels.</summary>
     public int Width { get; }
     public int Height { get; }
-    /// <summary>RGBA float texels, row-major: what Image.SetData(Width, Height, false, Rgbaf, bytes) takes.</summary>
-    public float[] Texels { get; }
+    /// <summary>RGBA float texels, row-major, as raw bytes: exactly what Image.SetData(Width, Height, false, Rgbaf, bytes) takes, so no copy is needed.</summary>
+    public byte[] TexelBytes { get; }
+    /// <summary>The same memory seen as floats (4 per texel).</summary>
+    public Span<float> Texels => MemoryMarshal.Cast<byte, float>(TexelBytes.AsSpan());
     /// <summary>MultiMesh buffer: one instance per render strand; static.</summary>
     public float[] InstanceBuffer { get; }
     public int InstanceCount => RenderStrands;
     public StrandBounds Bounds { get; private set; } = StrandBounds.Empty;
-    public long BytesPerUpload => Texels.LongLength * sizeof(float);
+    public long BytesPerUpload => TexelBytes.LongLength;
     /// <summary>Live points written by the last Fill.</summary>
     public int LivePoints { get; private set; }
 

@@ -49,8 +49,10 @@ public sealed class SegmentInstanceBuffer
     /// <summary>Segments written by the last Fill (MultiMesh.VisibleInstanceCount).</summary>
     public int VisibleInstances { get; private set; }
     public StrandBounds Bounds { get; private set; } = StrandBounds.Empty;
-    /// <summary>Bytes one upload of the visible part moves to the engine.</summary>
-    public long BytesPerUpload => (long)VisibleInstances * FloatsPerInstance * sizeof(float);
+    /// <summary>Bytes one upload moves: Godot's MultimeshSetBuffer takes the whole buffer, hidden instances included.</summary>
+    public long BytesPerUpload => Buffer.LongLength * sizeof(float);
+    /// <summary>Bytes of the instances actually drawn.</summary>
+    public long VisibleBytes => (long)VisibleInstances * FloatsPerInstance * sizeof(float);
 
     /// <summary>Colour written per instance when UseColors (root and tip, linear RGBA).</summary>
     public Vector4 RootColor { get; set; } = new(0.16f, 0.10f, 0.06f, 1f);
