@@ -98,8 +98,9 @@ public partial class HairSystem3D : Node3D
 
     public override void _PhysicsProcess(double delta)
     {
-        if (Engine.IsEditorHint() && !_simulateInEditor) return;
         if (_needsRebuild) Rebuild();
+        // With editor simulation off the hair is shown as grown (Rebuild steps once) and stays still.
+        if (Engine.IsEditorHint() && !_simulateInEditor) return;
         if (_simulation == null || _scene == null) return;
         if (_collidersDirty) SyncColliders(_scene);
         int steps = _clock.Advance(delta);
