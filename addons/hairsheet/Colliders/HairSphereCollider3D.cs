@@ -1,0 +1,29 @@
+using Godot;
+using HairSheet.Logic;
+
+namespace HairSheet;
+
+/// <summary>A sphere collider (ears, bun, shoulders). Child of a HairSystem3D.</summary>
+[Tool]
+[GlobalClass]
+public partial class HairSphereCollider3D : Node3D, IHairColliderNode
+{
+    private float _radius = 0.05f;
+
+    [Export(PropertyHint.Range, "0.001,10,0.001,suffix:m")]
+    public float Radius
+    {
+        get => _radius;
+        set { _radius = value; HairColliderNotify.Changed(this); }
+    }
+
+    public override void _Ready() => SetNotifyLocalTransform(true);
+
+    public override void _Notification(int what)
+    {
+        if (what == NotificationLocalTransformChanged) HairColliderNotify.Changed(this);
+    }
+
+    public HairSim.Collider ToCollider(Transform3D t) => HeadPoseMath.Sphere(
+        t.Basis.Column0.ToNumerics(), t.Basis.Column1.ToNumerics(), t.Basis.Column2.ToNumerics(), t.Origin.ToNumerics(), _radius);
+}

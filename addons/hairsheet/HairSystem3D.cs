@@ -1,0 +1,315 @@
+using System;
+using System.Collections.Generic;
+using System.Diagnostics;
+using Godot;
+using HairSheet.Logic;
+using HairSim;
+
+namespace HairSheet;
+
+/// <summary>
+/// The hair node. Owns a HairScene and its HairSimulation, builds the pipeline its settings and child
+/// collider nodes call for, steps it in _PhysicsProcess with a fixed step, and pins the roots to a head
+/// node's global transform (a game character's head bone or an AR-tracked head). The groom comes from the
+/// assigned <see cref="Hairstyle"/> if any, else from the Groom properties. Edits (cut, fit) go through
+/// <see cref="ApplyEdit"/> at run time, or through the editor's undo manager (StageEdit + RedoEdit/UndoEdit).
+/// </summary>
+[Tool]
+[GlobalClass]
+public partial class HairSystem3D : Node3D
+{
+    [Signal] public delegate void SceneRebuiltEventHandler();
+    [Signal] public delegate void StyleChangedEventHandler();
+
+    private readonly HairNodeSettings _settings = new();
+    private Hairstyle? _hairstyle;
+    private Node3D? _head;
+    private bool _useHeadEllipsoid = true;
+    private bool _simulateInEditor = true;
+    private HairScene? _scene;
+    private HairSimulation? _simulation;
+    private IDisposableDispatcher? _dispatcher;
+    private HairEditSession? _edits;
+    private HairEdit? _pendingEdit;
+    private FixedStepClock _clock = new(1.0 / 60);
+    private GroomSettings? _groom;
+    private HairMultiMeshRenderer? _renderer;
+    private IReadOnlyList<string> _problems = Array.Empty<string>();
+    private bool _needsRebuild = true, _collidersDirty = true;
+    private readonly Stopwatch _stepTimer = new();
+
+    // ---- Groom ----
+    /// <summary>A saved groom (overrides the Groom numbers below when set).</summary>
+    [ExportGroup("Groom")]
+    [Export] public Hairstyle? Hairstyle { get => _hairstyle; set { _hairstyle = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "1,2000,1")] public int Sheets { get => _settings.Sheets; set { _settings.Sheets = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "1,256,1")] public int StrandsPerSheet { get => _settings.StrandsPerSheet; set { _settings.StrandsPerSheet = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "3,64,1")] public int ParticlesPerStrand { get => _settings.ParticlesPerStrand; set { _settings.ParticlesPerStrand = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0.01,2,0.005,suffix:m")] public float StrandLength { get => _settings.StrandLength; set { _settings.StrandLength = value; Invalidate(); } }
+    [Export] public Vector3 HeadRadii { get => _settings.HeadRadii.ToGodot(); set { _settings.HeadRadii = value.ToNumerics(); Invalidate(); } }
+
+    // ---- Simulation ----
+    /// <summary>The head the roots follow; empty = this node's own transform.</summary>
+    [ExportGroup("Simulation")]
+    [Export] public Node3D? Head { get => _head; set { _head = value; _collidersDirty = true; } }
+    /// <summary>Shape-matching α: 0 = limp, 1 = holds its rest shape.</summary>
+    [Export(PropertyHint.Range, "0,1,0.01")] public float Stiffness { get => _settings.Stiffness; set { _settings.Stiffness = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,50,0.1,suffix:1/s")] public float Damping { get => _settings.Damping; set { _settings.Damping = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "1,32,1")] public int Substeps { get => _settings.Substeps; set { _settings.Substeps = value; Invalidate(); } }
+    [Export] public Vector3 Gravity { get => _settings.Gravity.ToGodot(); set { _settings.Gravity = value.ToNumerics(); Invalidate(); } }
+    [Export(PropertyHint.Range, "10,240,1,suffix:Hz")] public int StepsPerSecond { get => _settings.StepsPerSecond; set { _settings.StepsPerSecond = value; Invalidate(); } }
+    /// <summary>Collide with the groom's head ellipsoid (in addition to child collider nodes).</summary>
+    [Export] public bool UseHeadEllipsoid { get => _useHeadEllipsoid; set { _useHeadEllipsoid = value; _collidersDirty = true; } }
+    [Export] public bool SimulateInEditor { get => _simulateInEditor; set => _simulateInEditor = value; }
+
+    // ---- Rendering ----
+    /// <summary>Interpolated render strands between neighbouring simulated strands (Catmull-Rom across the sheet).</summary>
+    [ExportGroup("Rendering")]
+    [Export(PropertyHint.Range, "0,16,1")] public int RenderDensity { get => _settings.RenderDensity; set { _settings.RenderDensity = value; Invalidate(); } }
+    [Export] public Color RootColor { get => ToColor(_settings.RootColor); set { _settings.RootColor = value.ToNumerics(); PushLook(); } }
+    [Export] public Color TipColor { get => ToColor(_settings.TipColor); set { _settings.TipColor = value.ToNumerics(); PushLook(); } }
+    [Export(PropertyHint.Range, "0.0001,0.01,0.0001,suffix:m")] public float RootWidth { get => _settings.RootWidth; set { _settings.RootWidth = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,0.01,0.0001,suffix:m")] public float TipWidth { get => _settings.TipWidth; set { _settings.TipWidth = value; Invalidate(); } }
+
+    public HairScene? Scene => _scene;
+    public HairSimulation? Simulation => _simulation;
+    /// <summary>Wall time of the last physics frame's hair steps, in milliseconds.</summary>
+    public double LastStepMilliseconds { get; private set; }
+    public HairNodeSettings Settings => _settings;
+
+    public override void _Ready()
+    {
+        _renderer = FindRenderer();
+        Rebuild();
+    }
+
+    public override void _ExitTree()
+    {
+        // No threads may outlive the node: the editor unloads this assembly on every rebuild (godot #78513).
+        _simulation = null;
+        _dispatcher?.Dispose();
+        _dispatcher = null;
+    }
+
+    public override void _EnterTree()
+    {
+        if (_scene != null && _dispatcher == null) _needsRebuild = true;
+    }
+
+    public override void _PhysicsProcess(double delta)
+    {
+        if (_needsRebuild) Rebuild();
+        // With editor simulation off the hair is shown as grown (Rebuild steps once) and stays still.
+        if (Engine.IsEditorHint() && !_simulateInEditor) return;
+        if (_simulation == null || _scene == null) return;
+        if (_collidersDirty) SyncColliders(_scene);
+        int steps = _clock.Advance(delta);
+        if (steps == 0) return;
+        _stepTimer.Restart();
+        var head = HeadPose();
+        float dt = (float)_clock.Step;
+        for (int i = 0; i < steps; i++) _simulation.Step(dt, head);
+        LastStepMilliseconds = _stepTimer.Elapsed.TotalMilliseconds;
+        Draw();
+    }
+
+    public override string[] _GetConfigurationWarnings()
+    {
+        var w = new List<string>(_problems);
+        if (FindRenderer() == null && !Engine.IsEditorHint()) w.Add("No HairMultiMeshRenderer child: one is created at run time.");
+        return w.ToArray();
+    }
+
+    /// <summary>Called by child collider nodes when they move or change shape.</summary>
+    public void CollidersChanged() => _collidersDirty = true;
+
+    /// <summary>Regrows the groom (drops unsaved edits) on the next physics frame.</summary>
+    public void Invalidate()
+    {
+        _needsRebuild = true;
+        if (IsInsideTree()) UpdateConfigurationWarnings();
+    }
+
+    /// <summary>Builds a new scene from the settings; invalid settings keep the running scene and report every problem.</summary>
+    public void Rebuild()
+    {
+        _needsRebuild = false;
+        _problems = _settings.Validate();
+        if (IsInsideTree()) UpdateConfigurationWarnings();
+        if (_problems.Count > 0)
+        {
+            GD.PushError($"{Name}: " + string.Join(" ", _problems));
+            return;
+        }
+        HairScene scene;
+        GroomSettings groom;
+        try
+        {
+            var simSettings = _settings.ToSimulation();
+            if (_hairstyle != null)
+            {
+                groom = _hairstyle.ToRecord().ToGroom();
+                scene = _hairstyle.BuildScene(simSettings);
+            }
+            else
+            {
+                groom = _settings.ToGroom();
+                scene = GroomBuilder.BuildScene(groom, simSettings);
+            }
+            scene.Render = _settings.ToRender();
+        }
+        catch (Exception e) when (e is ArgumentException or System.IO.InvalidDataException)
+        {
+            _problems = new[] { e.Message };
+            GD.PushError($"{Name}: {e.Message}");
+            return;
+        }
+        _groom = groom;
+        scene.World.PlaceHead(HeadPose());
+        SyncColliders(scene);
+        _dispatcher ??= ThreadDispatchers.CreateDefault();
+        _scene = scene;
+        _simulation = new HairSimulation(scene, dispatcher: _dispatcher);
+        _edits = new HairEditSession(scene);
+        _pendingEdit = null;
+        _clock = new FixedStepClock(_settings.FixedStep);
+        // One step so the render strands exist before the first frame is drawn.
+        _simulation.Step((float)_clock.Step, HeadPose());
+        _renderer ??= FindRenderer() ?? CreateRenderer();
+        _renderer.Bind(scene.RenderOutput!, _settings.ToLook(), RootColor, TipColor);
+        Draw();
+        EmitSignal(SignalName.SceneRebuilt);
+    }
+
+    // ---- edits ----
+
+    /// <summary>Run time: apply an edit now (undo with <see cref="UndoEdit"/>).</summary>
+    public void ApplyEdit(HairEdit edit)
+    {
+        if (_edits == null) throw new InvalidOperationException("The hair node has no scene yet.");
+        _edits.Do(edit);
+        OnStyleChanged();
+    }
+
+    /// <summary>Editor: remember an edit so the undo manager's first do-call (RedoEdit) applies it.</summary>
+    public void StageEdit(HairEdit edit) => _pendingEdit = edit;
+
+    /// <summary>Undo manager do-method: applies the staged edit, or redoes the last undone one.</summary>
+    public void RedoEdit()
+    {
+        if (_edits == null) return;
+        if (_pendingEdit != null) { _edits.Do(_pendingEdit); _pendingEdit = null; }
+        else if (!_edits.Redo()) return;
+        OnStyleChanged();
+    }
+
+    /// <summary>Undo manager undo-method (and the run-time Undo button).</summary>
+    public void UndoEdit()
+    {
+        if (_edits != null && _edits.Undo()) OnStyleChanged();
+    }
+
+    /// <summary>Back to the groom as grown (the style data is cleared).</summary>
+    public void ResetStyle()
+    {
+        if (_hairstyle != null && !Engine.IsEditorHint())
+            _hairstyle = (Hairstyle)_hairstyle.Duplicate();   // never clear a shared resource at run time
+        if (_hairstyle != null) _hairstyle.StyleData = Array.Empty<byte>();
+        Rebuild();
+        EmitSignal(SignalName.StyleChanged);
+    }
+
+    /// <summary>Saves groom + style as a Hairstyle resource; written to a temporary name, then renamed.</summary>
+    public void SaveHairstyle(string path)
+    {
+        if (_scene == null || _groom == null) throw new InvalidOperationException("Nothing to save: the hair node has no scene.");
+        var res = new Hairstyle();
+        res.SetFrom(HairstyleRecord.FromGroom(_groom, HairStyleIO.Save(_scene)));
+        string ext = System.IO.Path.GetExtension(path);
+        string tmp = path[..^ext.Length] + ".tmp" + ext;
+        var err = ResourceSaver.Save(res, tmp);
+        if (err != Error.Ok) throw new System.IO.IOException($"Could not write {tmp}: {err}.");
+        err = DirAccess.RenameAbsolute(ProjectSettings.GlobalizePath(tmp), ProjectSettings.GlobalizePath(path));
+        if (err != Error.Ok) throw new System.IO.IOException($"Could not replace {path}: {err}.");
+    }
+
+    /// <summary>Loads a Hairstyle file; a missing or corrupt file throws and the current hair stays as it is.</summary>
+    public void LoadHairstyle(string path)
+    {
+        if (!ResourceLoader.Exists(path)) throw new System.IO.FileNotFoundException($"No hairstyle at {path}.");
+        var res = ResourceLoader.Load<Hairstyle>(path, cacheMode: ResourceLoader.CacheMode.Ignore)
+                  ?? throw new System.IO.InvalidDataException($"{path} is not a Hairstyle resource.");
+        // Build first: if the file is bad, nothing here has changed yet.
+        res.BuildScene(_settings.ToSimulation());
+        _hairstyle = res;
+        Rebuild();
+        EmitSignal(SignalName.StyleChanged);
+    }
+
+    private void OnStyleChanged()
+    {
+        if (_scene == null) return;
+        // In the editor the resource is what the scene file saves: keep it in step with every edit, undo and redo.
+        if (Engine.IsEditorHint() && _hairstyle != null) _hairstyle.StyleData = HairStyleIO.Save(_scene);
+        Draw();
+        EmitSignal(SignalName.StyleChanged);
+    }
+
+    // ---- helpers ----
+
+    private RigidTransform HeadPose() => HeadTransform().ToRigid();
+
+    private Transform3D HeadTransform()
+    {
+        var t = _head != null && IsInstanceValid(_head) ? _head.GlobalTransform : GlobalTransform;
+        return new Transform3D(t.Basis.Orthonormalized(), t.Origin);
+    }
+
+    private void SyncColliders(HairScene scene)
+    {
+        _collidersDirty = false;
+        var list = new List<Collider>();
+        try
+        {
+            if (_useHeadEllipsoid && _groom != null) list.Add(Collider.Ellipsoid(_groom.HeadCenter, _groom.HeadRadii));
+            var headInverse = HeadTransform().AffineInverse();
+            foreach (var child in GetChildren())
+                if (child is IHairColliderNode c && child is Node3D n && n.Visible)
+                    list.Add(c.ToCollider(headInverse * n.GlobalTransform));
+        }
+        catch (ArgumentException e)
+        {
+            GD.PushError($"{Name}: collider ignored: {e.Message}");
+            return;
+        }
+        scene.ClearColliders();
+        foreach (var c in list) scene.AddCollider(c);
+    }
+
+    private void Draw()
+    {
+        if (_scene?.RenderOutput is { } output && _renderer != null && IsInstanceValid(_renderer)) _renderer.Render(output);
+    }
+
+    private void PushLook()
+    {
+        if (_renderer != null && IsInstanceValid(_renderer)) _renderer.SetColors(RootColor, TipColor);
+    }
+
+    private HairMultiMeshRenderer? FindRenderer()
+    {
+        foreach (var child in GetChildren())
+            if (child is HairMultiMeshRenderer r) return r;
+        return null;
+    }
+
+    private HairMultiMeshRenderer CreateRenderer()
+    {
+        // Not owned by the edited scene, so it is never saved into the .tscn.
+        var r = new HairMultiMeshRenderer { Name = "HairRenderer" };
+        AddChild(r, forceReadableName: false, InternalMode.Front);
+        return r;
+    }
+
+    private static Color ToColor(System.Numerics.Vector4 c) => new(c.X, c.Y, c.Z, c.W);
+}

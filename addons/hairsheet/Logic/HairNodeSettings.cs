@@ -1,0 +1,141 @@
+using System.Numerics;
+using HairSim;
+
+namespace HairSheet.Logic;
+
+/// <summary>Every problem found in the inspector values at once, each naming the property the user sees.</summary>
+public sealed class HairSettingsException : ArgumentException
+{
+    public HairSettingsException(IReadOnlyList<string> problems)
+        : base("Invalid hair settings:\n  " + string.Join("\n  ", problems)) => Problems = problems;
+
+    public IReadOnlyList<string> Problems { get; }
+}
+
+/// <summary>
+/// The hair node's inspector values, engine-free. Validate() lists every bad value with the inspector's name
+/// for it; the To* methods build HairSim's settings only from values that passed (so a bad edit in the
+/// inspector leaves the running simulation untouched).
+/// </summary>
+public sealed class HairNodeSettings
+{
+    public int Sheets { get; set; } = 435;
+    public int StrandsPerSheet { get; set; } = 40;
+    public int ParticlesPerStrand { get; set; } = 16;
+    public float StrandLength { get; set; } = 0.25f;
+    /// <summary>Shape-matching α (Müller): 0 = limp, 1 = holds its rest shape.</summary>
+    public float Stiffness { get; set; } = 1f;
+    public float Damping { get; set; } = 2f;
+    public int Substeps { get; set; } = 4;
+    public Vector3 Gravity { get; set; } = new(0f, -9.81f, 0f);
+    /// <summary>Interpolated render strands between neighbouring simulated strands.</summary>
+    public int RenderDensity { get; set; } = 1;
+    public Vector4 RootColor { get; set; } = new(0.16f, 0.10f, 0.06f, 1f);
+    public Vector4 TipColor { get; set; } = new(0.45f, 0.32f, 0.20f, 1f);
+    public float RootWidth { get; set; } = StrandLook.Default.RootWidth;
+    public float TipWidth { get; set; } = StrandLook.Default.TipWidth;
+    /// <summary>Hair steps per second (the fixed step is its inverse).</summary>
+    public int StepsPerSecond { get; set; } = 60;
+    public Vector3 HeadRadii { get; set; } = GroomSettings.Reference().HeadRadii;
+    public ulong Seed { get; set; } = 2009;
+
+    public IReadOnlyList<string> Validate()
+    {
+        var p = new List<string>();
+        IntRange(p, "Sheets", Sheets, 1, 100_000);
+        IntRange(p, "Strands Per Sheet", StrandsPerSheet, 1, HairWorld.MaxStrandsPerSheet);
+        IntRange(p, "Particles Per Strand", ParticlesPerStrand, 3, HairWorld.MaxParticlesPerStrand);
+        if (p.Count == 0)
+        {
+            long total = (long)Sheets * StrandsPerSheet * ParticlesPerStrand;
+            if (total > HairWorld.MaxParticles)
+                p.Add($"Sheets × Strands Per Sheet × Particles Per Strand = {total:N0} particles, more than the {HairWorld.MaxParticles:N0} a world holds.");
+        }
+        FloatRange(p, "Strand Length", StrandLength, 0.001f, 10f);
+        FloatRange(p, "Stiffness", Stiffness, 0f, 1f);
+        FloatRange(p, "Damping", Damping, 0f, 100f);
+        IntRange(p, "Substeps", Substeps, 1, 64);
+        if (!Finite(Gravity) || Gravity.Length() > 1000f) p.Add($"Gravity must be finite and at most 1000 m/s², got {Gravity}.");
+        IntRange(p, "Render Density", RenderDensity, 0, RenderSettings.MaxStrandsPerGap);
+        Color(p, "Root Color", RootColor);
+        Color(p, "Tip Color", TipColor);
+        FloatRange(p, "Root Width", RootWidth, 1e-5f, 0.05f);
+        FloatRange(p, "Tip Width", TipWidth, 0f, 0.05f);
+        if (float.IsFinite(RootWidth) && float.IsFinite(TipWidth) && TipWidth > RootWidth) p.Add($"Tip Width ({TipWidth}) must not exceed Root Width ({RootWidth}): tips are thinner than roots.");
+        IntRange(p, "Steps Per Second", StepsPerSecond, 10, 1000);
+        if (!Finite(HeadRadii) || HeadRadii.X <= 1e-3f || HeadRadii.Y <= 1e-3f || HeadRadii.Z <= 1e-3f || HeadRadii.Length() > 10f)
+            p.Add($"Head Radii must be positive and finite (each > 1 mm, at most 10 m), got {HeadRadii}.");
+        return p;
+    }
+
+    public void ThrowIfInvalid()
+    {
+        var problems = Validate();
+        if (problems.Count > 0) throw new HairSettingsException(problems);
+    }
+
+    public GroomSettings ToGroom()
+    {
+        ThrowIfInvalid();
+        var g = GroomSettings.Reference();
+        g.SheetCount = Sheets;
+        g.StrandsPerSheet = StrandsPerSheet;
+        g.ParticlesPerStrand = ParticlesPerStrand;
+        g.StrandLength = StrandLength;
+        g.HeadRadii = HeadRadii;
+        g.Seed = Seed;
+        g.PinnedPerStrand = Math.Min(g.PinnedPerStrand, ParticlesPerStrand - 1);
+        g.Validate();
+        return g;
+    }
+
+    public SimulationSettings ToSimulation()
+    {
+        ThrowIfInvalid();
+        var s = new SimulationSettings
+        {
+            Alpha = Stiffness,
+            Damping = Damping,
+            Substeps = Substeps,
+            Gravity = Gravity,
+            Path = SolverPath.Fast,
+        };
+        s.Validate();
+        return s;
+    }
+
+    public RenderSettings ToRender()
+    {
+        ThrowIfInvalid();
+        var r = new RenderSettings { StrandsPerGap = RenderDensity };
+        r.Validate();
+        return r;
+    }
+
+    public StrandLook ToLook()
+    {
+        ThrowIfInvalid();
+        return new StrandLook(RootWidth, TipWidth);
+    }
+
+    public float FixedStep => 1f / StepsPerSecond;
+
+    private static void IntRange(List<string> p, string name, int v, int lo, int hi)
+    {
+        if (v < lo || v > hi) p.Add($"{name} must be in {lo} … {hi}, got {v}.");
+    }
+
+    private static void FloatRange(List<string> p, string name, float v, float lo, float hi)
+    {
+        if (!float.IsFinite(v) || v < lo || v > hi) p.Add($"{name} must be in {lo} … {hi}, got {v}.");
+    }
+
+    private static void Color(List<string> p, string name, Vector4 c)
+    {
+        if (!float.IsFinite(c.X) || !float.IsFinite(c.Y) || !float.IsFinite(c.Z) || !float.IsFinite(c.W) ||
+            c.X < 0f || c.Y < 0f || c.Z < 0f || c.W < 0f || c.W > 1f || c.X > 16f || c.Y > 16f || c.Z > 16f)
+            p.Add($"{name} must have finite, non-negative channels (alpha at most 1), got {c}.");
+    }
+
+    private static bool Finite(Vector3 v) => float.IsFinite(v.X) && float.IsFinite(v.Y) && float.IsFinite(v.Z);
+}
