@@ -54,7 +54,7 @@ public sealed class HairPipeline
 
         if (ctx.SubstepHeads.Length < st.Substeps) ctx.SubstepHeads = new RigidTransform[st.Substeps];
         for (int s = 0; s < st.Substeps; s++)
-            ctx.SubstepHeads[s] = ctx.Teleported ? headTarget
+            ctx.SubstepHeads[s] = ctx.Teleported || s == st.Substeps - 1 ? headTarget // exact at the frame's end
                 : RigidTransform.Interpolate(world.Head, headTarget, (s + 1) / (float)st.Substeps);
 
         var colliders = _scene.Colliders;

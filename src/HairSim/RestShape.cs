@@ -9,7 +9,8 @@ namespace HairSim;
 ///   prev = ShapePrev·e1 − ½·ShapeBend·e2,  mid = ShapeMid·e1 + ShapeBend·e2,  next = ShapeNext·e1 − ½·ShapeBend·e2.
 /// (The e2 parts must sum to zero about the centroid, and prev/next differ only along e1.)
 /// A straight strand with equal edges l0 stores (−l0, 0, +l0, 0): exactly the goals of the source (SPEC A.3).
-/// Only bend magnitude is stored, not the bend plane, so each triple keeps its curvature but twist is free.
+/// The bend direction e2 is not stored: it is taken from the head-space rest pose (RestX/Y/Z), turned with the
+/// head and made perpendicular to the current axis (ShapeMatchSystem.BendDirection), so twist is held too.
 /// </summary>
 public static class RestShape
 {

@@ -35,8 +35,9 @@ public readonly record struct WorldMetrics(
                 if (w.InvMass[i] == 0f) continue;
                 foreach (var c in colliders)
                 {
+                    // "Inside" beyond float resolution at this distance from the origin (a few ulps).
                     float d = c.Penetration(p);
-                    if (d > 1e-6f) { inside++; maxPen = Math.Max(maxPen, d); }
+                    if (d > 1e-6f + 5e-7f * p.Length()) { inside++; maxPen = Math.Max(maxPen, d); }
                 }
             }
         }

@@ -95,24 +95,26 @@ public readonly struct Collider
                 return true;
             }
             case ColliderKind.Sphere:
-                return PushOutOfSphere(p, Center, Radius, out surface, out normal, out depth);
+                return PushOutOfSphere(p, Center, Radius, Vector3.UnitY, out surface, out normal, out depth);
             default:
             {
                 var ab = End - Center;
                 double len2 = Vector3.Dot(ab, ab);
                 double t = len2 < 1e-18 ? 0 : Math.Clamp(Vector3.Dot(p - Center, ab) / len2, 0.0, 1.0);
                 var closest = Center + (float)t * ab;
-                return PushOutOfSphere(p, closest, Radius, out surface, out normal, out depth);
+                // On the axis itself, push out sideways (perpendicular to the axis), not along it.
+                var fallback = len2 < 1e-18 ? Vector3.UnitY : RestShape.AnyPerpendicular(Vector3.Normalize(ab));
+                return PushOutOfSphere(p, closest, Radius, fallback, out surface, out normal, out depth);
             }
         }
     }
 
-    private static bool PushOutOfSphere(Vector3 p, Vector3 c, float radius, out Vector3 surface, out Vector3 normal, out float depth)
+    private static bool PushOutOfSphere(Vector3 p, Vector3 c, float radius, Vector3 fallbackNormal, out Vector3 surface, out Vector3 normal, out float depth)
     {
         var d = p - c;
         double dist = Math.Sqrt((double)d.X * d.X + (double)d.Y * d.Y + (double)d.Z * d.Z);
         if (dist >= radius) { surface = p; normal = default; depth = 0; return false; }
-        normal = dist < 1e-12 ? Vector3.UnitY : new Vector3((float)(d.X / dist), (float)(d.Y / dist), (float)(d.Z / dist));
+        normal = dist < 1e-12 ? fallbackNormal : new Vector3((float)(d.X / dist), (float)(d.Y / dist), (float)(d.Z / dist));
         surface = c + normal * radius;
         depth = (float)(radius - dist);
         return true;

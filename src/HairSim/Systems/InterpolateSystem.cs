@@ -43,7 +43,7 @@ public sealed class InterpolateSystem : IHairSystem
                 for (int m = 1; m <= g; m++)
                 {
                     float t = m / (float)(g + 1);
-                    int count = (int)MathF.Round(nj + (nn - nj) * t);
+                    int count = (int)MathF.Round(nj + (nn - nj) * t, MidpointRounding.AwayFromZero);
                     for (int k = 0; k < count; k++)
                     {
                         var p1 = At(w, sj, k); var p2 = At(w, sn, k);

@@ -71,9 +71,12 @@ public sealed class ShapeMatchSystem : IHairSystem
     {
         int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
         Array.Clear(gx, 0, n); Array.Clear(gy, 0, n); Array.Clear(gz, 0, n); Array.Clear(count, 0, n);
+        // Rest-to-current rotation carried from the root along the strand (only needed for bent rest shapes).
+        var frame = head.Rotation;
         for (int k = 1; k < n - 1; k++)
         {
             int i = first + k;
+            frame = TransportFrame(w, i, frame);
             double ax = w.PosX[i - 1], ay = w.PosY[i - 1], az = w.PosZ[i - 1];
             double bx = w.PosX[i], by = w.PosY[i], bz = w.PosZ[i];
             double cx = w.PosX[i + 1], cy = w.PosY[i + 1], cz = w.PosZ[i + 1];
@@ -93,16 +96,10 @@ public sealed class ShapeMatchSystem : IHairSystem
             double nx = 0, ny = 0, nz = 0;
             if (bend != 0)
             {
-                double ux = bx - ox, uy = by - oy, uz = bz - oz;
-                double along = ux * ex + uy * ey + uz * ez;
-                ux -= along * ex; uy -= along * ey; uz -= along * ez;
-                double ul = Math.Sqrt(ux * ux + uy * uy + uz * uz);
-                if (ul > 1e-9 * (len + 1e-12)) { nx = ux / ul; ny = uy / ul; nz = uz / ul; }
-                else
-                {
-                    var p = RestShape.AnyPerpendicular(new Vector3((float)ex, (float)ey, (float)ez));
-                    nx = p.X; ny = p.Y; nz = p.Z;
-                }
+                // Bend direction: the rest pose's, turned by the frame carried from the root, made perpendicular
+                // to the current axis. Taking it from the current triple alone would leave twist free, and a curl
+                // would relax into a zigzag whose bends alternate.
+                BendDirection(w, i, frame, ex, ey, ez, bx - ox, by - oy, bz - oz, len, out nx, out ny, out nz);
             }
             int j = k - 1;
             gx[j] += ox + pa * ex - 0.5 * bend * nx; gy[j] += oy + pa * ey - 0.5 * bend * ny; gz[j] += oz + pa * ez - 0.5 * bend * nz; count[j]++;
@@ -111,5 +108,55 @@ public sealed class ShapeMatchSystem : IHairSystem
             j = k + 1;
             gx[j] += ox + pn * ex - 0.5 * bend * nx; gy[j] += oy + pn * ey - 0.5 * bend * ny; gz[j] += oz + pn * ez - 0.5 * bend * nz; count[j]++;
         }
+    }
+
+    /// <summary>
+    /// Unit bend direction of triple i: the rest pose's direction (middle particle away from the rest axis),
+    /// turned by the rest-to-current frame rotation and made perpendicular to the current axis e. Falls back to the current middle
+    /// offset (ux, uy, uz), then to any perpendicular, so it is always finite.
+    /// </summary>
+    public static void BendDirection(HairWorld w, int i, Quaternion frame, double ex, double ey, double ez,
+        double ux, double uy, double uz, double axisLength, out double nx, out double ny, out double nz)
+    {
+        double ax = w.RestX[i - 1], ay = w.RestY[i - 1], az = w.RestZ[i - 1];
+        double bx = w.RestX[i], by = w.RestY[i], bz = w.RestZ[i];
+        double cx = w.RestX[i + 1], cy = w.RestY[i + 1], cz = w.RestZ[i + 1];
+        double rx = cx - ax, ry = cy - ay, rz = cz - az;
+        double rl = Math.Sqrt(rx * rx + ry * ry + rz * rz);
+        if (rl > 1e-12) { rx /= rl; ry /= rl; rz /= rl; }
+        double mx = bx - (ax + bx + cx) / 3, my = by - (ay + by + cy) / 3, mz = bz - (az + bz + cz) / 3;
+        double along = mx * rx + my * ry + mz * rz;
+        var rest = Vector3.Transform(new Vector3((float)(mx - along * rx), (float)(my - along * ry), (float)(mz - along * rz)), frame);
+        double dx = rest.X, dy = rest.Y, dz = rest.Z;
+        double restLength = Math.Sqrt(dx * dx + dy * dy + dz * dz);
+        along = dx * ex + dy * ey + dz * ez;
+        dx -= along * ex; dy -= along * ey; dz -= along * ez;
+        double dl = Math.Sqrt(dx * dx + dy * dy + dz * dz);
+        if (dl > 1e-3 * restLength && dl > 1e-15) { nx = dx / dl; ny = dy / dl; nz = dz / dl; return; }
+        along = ux * ex + uy * ey + uz * ez;
+        ux -= along * ex; uy -= along * ey; uz -= along * ez;
+        double ul = Math.Sqrt(ux * ux + uy * uy + uz * uz);
+        if (ul > 1e-9 * (axisLength + 1e-12)) { nx = ux / ul; ny = uy / ul; nz = uz / ul; return; }
+        var p = RestShape.AnyPerpendicular(new Vector3((float)ex, (float)ey, (float)ez));
+        nx = p.X; ny = p.Y; nz = p.Z;
+    }
+
+    /// <summary>
+    /// Carries the rest-to-current rotation across the segment ending at particle i: the rest segment, turned by
+    /// the frame so far, is brought onto the current segment by the smallest rotation (parallel transport).
+    /// </summary>
+    public static Quaternion TransportFrame(HairWorld w, int i, Quaternion frame)
+    {
+        var rest = new Vector3(w.RestX[i] - w.RestX[i - 1], w.RestY[i] - w.RestY[i - 1], w.RestZ[i] - w.RestZ[i - 1]);
+        var cur = new Vector3(w.PosX[i] - w.PosX[i - 1], w.PosY[i] - w.PosY[i - 1], w.PosZ[i] - w.PosZ[i - 1]);
+        float rl = rest.Length(), cl = cur.Length();
+        if (rl < 1e-12f || cl < 1e-12f) return frame;
+        var a = Vector3.Transform(rest / rl, frame);
+        var b = cur / cl;
+        float d = Vector3.Dot(a, b);
+        if (d < -0.9999f) return frame; // folded back: no unique smallest rotation, keep the frame
+        var c = Vector3.Cross(a, b);
+        var turn = Quaternion.Normalize(new Quaternion(c, 1f + d));
+        return Quaternion.Normalize(turn * frame);
     }
 }
