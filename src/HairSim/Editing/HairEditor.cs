@@ -185,6 +185,17 @@ public static class HairEditor
         return new ResetCommand(scene.World, StrandsOf(scene.World, selection), groom);
     }
 
+    /// <summary>
+    /// Makes the current shape of the selected strands (all if null) their rest pose and rest shape — for example
+    /// after the groom has settled under gravity, so a global shape stiffness holds the hanging hair rather than
+    /// pulling it back to the groom's initial pose. Nothing moves.
+    /// </summary>
+    public static EditCommand BakeRestPose(HairScene scene, StrandSelection? selection = null)
+    {
+        ArgumentNullException.ThrowIfNull(scene);
+        return new BakeCommand(scene.World, StrandsOf(scene.World, selection));
+    }
+
     private static int[] StrandsOf(HairWorld w, StrandSelection? selection)
     {
         if (selection == null) { var all = new int[w.StrandCount]; for (int s = 0; s < all.Length; s++) all[s] = s; return all; }

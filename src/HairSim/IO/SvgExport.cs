@@ -10,12 +10,16 @@ public static class SvgExport
 
     /// <summary>
     /// Draws the live strands of the world (world space) looking along −Z (front) or −X (side), fitted to the
-    /// given extent (metres around the head centre). Strands flagged in <paramref name="highlight"/> are drawn in a second colour.
+    /// given extent (metres around the head centre). Strands flagged in <paramref name="highlight"/> are drawn in a second colour;
+    /// of the others only every <paramref name="every"/>-th is drawn (keeps pictures of the full scene small).
     /// </summary>
-    public static void Write(TextWriter o, HairScene scene, View view, float extent = 0.6f, int pixels = 600, ReadOnlySpan<bool> highlight = default, string? title = null)
+    public static void Write(TextWriter o, HairScene scene, View view, float extent = 0.6f, int pixels = 600, ReadOnlySpan<bool> highlight = default, string? title = null, int every = 1)
     {
         ArgumentNullException.ThrowIfNull(o);
         ArgumentNullException.ThrowIfNull(scene);
+        if (every < 1) throw new ArgumentOutOfRangeException(nameof(every), every, "Draw at least every strand once (every ≥ 1).");
+        if (!float.IsFinite(extent) || extent <= 0f) throw new ArgumentOutOfRangeException(nameof(extent), extent, "Extent must be positive.");
+        if (pixels < 16 || pixels > 16384) throw new ArgumentOutOfRangeException(nameof(pixels), pixels, "Picture size must be 16 … 16384 pixels.");
         var w = scene.World;
         var ci = CultureInfo.InvariantCulture;
         var centre = w.Head.Position;
@@ -43,7 +47,7 @@ public static class SvgExport
             for (int s = 0; s < w.StrandCount; s++)
             {
                 bool lit = !highlight.IsEmpty && s < highlight.Length && highlight[s];
-                if (lit != (pass == 1)) continue;
+                if (lit != (pass == 1) || (!lit && s % every != 0)) continue;
                 sb.Clear();
                 sb.Append("<polyline points=\"");
                 for (int k = 0; k < w.StrandParticleCount[s]; k++)
@@ -61,6 +65,6 @@ public static class SvgExport
         o.Write("</svg>\n");
     }
 
-    public static void Write(string path, HairScene scene, View view, float extent = 0.6f, int pixels = 600, bool[]? highlight = null, string? title = null) =>
-        CurveExport.WriteText(path, o => Write(o, scene, view, extent, pixels, highlight, title));
+    public static void Write(string path, HairScene scene, View view, float extent = 0.6f, int pixels = 600, bool[]? highlight = null, string? title = null, int every = 1) =>
+        CurveExport.WriteText(path, o => Write(o, scene, view, extent, pixels, highlight, title, every));
 }
