@@ -116,6 +116,39 @@ public class FitTests(ITestOutputHelper output)
     }
 
     [Fact]
+    public void PerspectiveFitWithAMovedHeadFollowsTheStrokeOnScreenAndStoresRestInHeadSpace()
+    {
+        var scene = EditScenes.Curtain(sheets: 1, strandsPerSheet: 5, particles: 11);
+        var w = scene.World;
+        var head = new RigidTransform(new Vector3(0.4f, 1.5f, -0.3f), Quaternion.CreateFromYawPitchRoll(0.9f, 0.3f, 0.2f));
+        w.PlaceHead(head);
+        var before = w.Clone();
+        // Looking at the curtain edge-on from its side, 0.8 m away, in head-relative terms.
+        var cam = StrokeCamera.LookAtPerspective(head.TransformPoint(new Vector3(-0.8f, -0.1f, 0)), head.TransformPoint(new Vector3(0, -0.1f, 0)),
+            head.TransformDirection(Vector3.UnitY), 0.9f, new Vector2(800, 600));
+        var curve = new[] { new Vector3(0, 0, 0), new Vector3(0, -0.05f, 0.03f), new Vector3(0, -0.12f, 0.08f), new Vector3(0, -0.2f, 0.06f), new Vector3(0, -0.3f, 0.0f) };
+        var stroke = Over(cam, curve.Select(head.TransformPoint));
+        HairEditor.Fit(scene, new StrandSelection(w, [0, 1, 2, 3, 4]), stroke).Apply();
+        for (int k = 0; k < 11; k++)
+        {
+            var mean = Vector3.Zero;
+            for (int s = 0; s < 5; s++) mean += w.GetPosition(w.StrandFirst[s] + k) / 5f;
+            Assert.True(cam.Project(mean, out var sp, out _));
+            Assert.True(EditScenes.DistanceToPolyline(sp, stroke.Points) < 0.5f, $"key curve point {k} is {EditScenes.DistanceToPolyline(sp, stroke.Points):F2} px off the stroke");
+        }
+        for (int s = 0; s < 5; s++)
+        {
+            AssertLengthsKept(w, s);
+            Assert.Equal(before.GetPosition(w.RootIndex(s)), w.GetPosition(w.RootIndex(s)));
+            for (int k = 0; k < 11; k++)
+            {
+                int i = w.StrandFirst[s] + k;
+                Assert.True(Vector3.Distance(head.TransformPoint(w.GetRest(i)), w.GetPosition(i)) < 1e-5f);
+            }
+        }
+    }
+
+    [Fact]
     public void FittedCurlIsStillCurledAfterFiveSecondsOfSimulation()
     {
         var settings = new SimulationSettings { GlobalShapeStiffness = 0.05f };

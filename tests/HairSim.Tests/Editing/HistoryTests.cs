@@ -75,6 +75,33 @@ public class HistoryTests
     }
 
     [Fact]
+    public void BakeRestPoseMakesTheSettledShapeTheRestShapeWithoutMovingAnything()
+    {
+        var (scene, _, _) = Scene();
+        var w = scene.World;
+        w.PlaceHead(new RigidTransform(new Vector3(0.2f, 0.1f, 0), Quaternion.CreateFromAxisAngle(Vector3.UnitX, 0.3f)));
+        var before = w.Clone();
+        var history = new EditHistory();
+        history.Do(HairEditor.BakeRestPose(scene));
+        for (int i = 0; i < w.ParticleCount; i++)
+        {
+            Assert.Equal(before.GetPosition(i), w.GetPosition(i));
+            Assert.Equal(before.GetVelocity(i), w.GetVelocity(i));
+        }
+        bool anyBend = false;
+        for (int s = 0; s < w.StrandCount; s++)
+            for (int k = 0; k < w.StrandParticleCount[s]; k++)
+            {
+                int i = w.StrandFirst[s] + k;
+                Assert.True(Vector3.Distance(w.Head.TransformPoint(w.GetRest(i)), w.GetPosition(i)) < 1e-5f);
+                anyBend |= w.ShapeBend[i] > 1e-4f;
+            }
+        Assert.True(anyBend, "the hanging (bent) shape was not taken into the rest shape");
+        history.Undo();
+        Assert.True(w.BitEquals(before));
+    }
+
+    [Fact]
     public void MemoryPerCommandIsTheAffectedStrandsOnlyAndHistoryStaysWithinItsBound()
     {
         var (scene, front, _) = Scene();
