@@ -56,8 +56,8 @@ public static class ColliderRay
                 if (tc >= 0 && y > 0 && y < baba) { t = (float)tc; hit = true; }
             }
         }
-        foreach (var centre in new[] { pa, pb })
-            if (UnitSphere((o - centre) / r, d / r, out float ts) && ts < t) { t = ts; hit = true; }
+        if (UnitSphere((o - pa) / r, d / r, out float ta) && ta < t) { t = ta; hit = true; }
+        if (UnitSphere((o - pb) / r, d / r, out float tb) && tb < t) { t = tb; hit = true; }
         return hit;
     }
 }

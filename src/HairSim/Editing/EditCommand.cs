@@ -32,7 +32,13 @@ public abstract class EditCommand
         if (_after == null)
         {
             _before = StrandSnapshot.Capture(World, _strands);
-            Execute(World);
+            try { Execute(World); }
+            catch
+            {
+                _before.Restore(World); // never leave a half-applied edit behind
+                _before = null;
+                throw;
+            }
             World.MarkEdited();
             _after = StrandSnapshot.Capture(World, _strands);
         }

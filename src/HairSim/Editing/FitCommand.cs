@@ -6,8 +6,6 @@ public sealed class FitOptions
 {
     /// <summary>If the stroke's last point is nearer the selection's roots (on screen) than its first, read it backwards.</summary>
     public bool OrientFromRoots { get; set; } = true;
-
-    public void Validate() { }
 }
 
 /// <summary>

@@ -158,7 +158,6 @@ public static class HairEditor
         ArgumentNullException.ThrowIfNull(selection);
         ArgumentNullException.ThrowIfNull(stroke);
         options ??= new FitOptions();
-        options.Validate();
         if (!ReferenceEquals(selection.World, scene.World)) throw new ArgumentException("The selection belongs to another world.", nameof(selection));
         if (selection.Count == 0) throw new ArgumentException("Nothing is selected: select strands before fitting.", nameof(selection));
         return FitCommand.Plan(scene, selection, stroke, options);
