@@ -38,7 +38,7 @@ public static class StyleCommand
         var w = scene.World;
         using var dispatcher = ThreadDispatchers.CreateDefault();
         var sim = new HairSimulation(scene, dispatcher: dispatcher);
-        Console.WriteLine($"reference scene: {w.SheetCount} sheets × {groom.StrandsPerSheet} strands × {groom.ParticlesPerStrand} particles = {w.StrandCount:N0} strands; global shape stiffness {stiffness.ToString(Ci)}");
+        Console.WriteLine($"scene: {w.SheetCount} sheets × {groom.StrandsPerSheet} strands × {groom.ParticlesPerStrand} particles = {w.StrandCount:N0} strands; global shape stiffness {stiffness.ToString(Ci)}");
         Simulate(sim, settle, "settling");
         var history = new EditHistory();
         scene.SetComponent(history);
@@ -67,7 +67,7 @@ public static class StyleCommand
         history.Do(cut);
         Console.WriteLine(string.Create(Ci, $"cut: {cut.Strands.Count:N0} strands cut at chin height (plan {cutMs:F1} ms, undo memory {cut.MemoryBytes / 1e6:F1} MB)"));
 
-        if (fringe.Count == 0) throw new InvalidOperationException("The fringe selection is empty; the scripted fit needs the reference head.");
+        if (fringe.Count == 0) throw new ArgumentException("The fringe selection is empty; the scripted fit needs the reference head.");
         var key = KeyCurve.FromStrands(w, fringe.Strands);
         var root = key.Root;
         // A curl in the side view: forward and down from the hairline, then a 2.5 cm loop turned 1.5 times.
@@ -111,7 +111,7 @@ public static class StyleCommand
 
     private static Vector2 ScreenOf(StrokeCamera cam, Vector3 p)
     {
-        if (!cam.Project(p, out var s, out _)) throw new InvalidOperationException("Scripted point is behind the camera.");
+        if (!cam.Project(p, out var s, out _)) throw new ArgumentException("Scripted point is behind the camera.");
         return Vector2.Clamp(s, Vector2.Zero, cam.ViewportSize);
     }
 
