@@ -1,28 +1,21 @@
-// The ONE place the addon touches HairSim's editing API (branch `edit`). Every other addon file uses only
-// the wrapper types below (HairEdit, HairEditSession, HairStyleIO), so aligning names at merge means
-// editing this file alone. Assumed API:
-//   HairSim.Editing.StrokeCamera.Perspective(Matrix4x4 view, Matrix4x4 projection, Vector2 viewport)
-//   new HairSim.Editing.Stroke(IReadOnlyList<Vector2> points, StrokeCamera camera)
-//   HairSim.Editing.HairEditor.Cut(HairScene, Stroke, CutOptions) -> IEditCommand
-//   HairSim.Editing.Selection.FromScreenArea(HairScene, IReadOnlyList<Vector2> area, StrokeCamera)
-//   HairSim.Editing.HairEditor.Fit(HairScene, Selection, Stroke, FitOptions) -> IEditCommand
-//   new HairSim.Editing.EditHistory(HairScene); EditHistory.Do(IEditCommand) / Undo() / Redo() -> bool
-//   HairSim.Editing.HairstyleFile.Write(HairScene, Stream) / Read(Stream, HairScene)
+// The ONE place the addon touches HairSim's editing API (HairSim.Editing, HairSim.IO). Every other addon file
+// uses only the wrapper types below (HairEdit, HairEditSession, HairStyleIO).
 using System.Collections.Generic;
 using System.IO;
 using System.Numerics;
 using HairSheet.Logic;
 using HairSim;
 using HairSim.Editing;
+using HairSim.IO;
 
 namespace HairSheet;
 
 /// <summary>An edit computed from a stroke, not yet applied: applying goes through a <see cref="HairEditSession"/>.</summary>
 public sealed class HairEdit
 {
-    internal HairEdit(string name, IEditCommand command) { Name = name; Command = command; }
+    internal HairEdit(string name, EditCommand command) { Name = name; Command = command; }
     public string Name { get; }
-    internal IEditCommand Command { get; }
+    internal EditCommand Command { get; }
 }
 
 /// <summary>Builds edits from strokes with the library's stroke and camera code (nothing is re-implemented here).</summary>
@@ -30,16 +23,24 @@ public static class HairEditAdapter
 {
     public static HairEdit Cut(HairScene scene, IReadOnlyList<Vector2> stroke, in CameraMatrices camera)
     {
-        var cam = StrokeCamera.Perspective(camera.View, camera.Projection, camera.Viewport);
+        var cam = ToStrokeCamera(camera);
         return new HairEdit("Cut hair", HairEditor.Cut(scene, new Stroke(stroke, cam), new CutOptions()));
     }
 
     public static HairEdit Fit(HairScene scene, IReadOnlyList<Vector2> area, IReadOnlyList<Vector2> stroke, in CameraMatrices camera)
     {
-        var cam = StrokeCamera.Perspective(camera.View, camera.Projection, camera.Viewport);
-        var selection = Selection.FromScreenArea(scene, area, cam);
+        var cam = ToStrokeCamera(camera);
+        var lasso = new Vector2[area.Count];
+        for (int i = 0; i < lasso.Length; i++) lasso[i] = area[i];
+        var selection = HairEditor.Select(scene, cam, SelectionArea.Lasso(lasso), new SelectionOptions { RootsOnly = true });
         return new HairEdit("Fit hair", HairEditor.Fit(scene, selection, new Stroke(stroke, cam), new FitOptions()));
     }
+
+    /// <summary>A projection with no perspective divide (last column 0, 0, 0, 1) is an orthographic camera.</summary>
+    private static StrokeCamera ToStrokeCamera(in CameraMatrices camera) =>
+        camera.Projection.M34 == 0f && camera.Projection.M44 == 1f
+            ? StrokeCamera.Orthographic(camera.View, camera.Projection, camera.Viewport)
+            : StrokeCamera.Perspective(camera.View, camera.Projection, camera.Viewport);
 }
 
 /// <summary>The undo history of one hair node's scene.</summary>
@@ -47,7 +48,11 @@ public sealed class HairEditSession
 {
     private readonly EditHistory _history;
 
-    public HairEditSession(HairScene scene) => _history = new EditHistory(scene);
+    public HairEditSession(HairScene scene)
+    {
+        _history = new EditHistory();
+        scene.SetComponent(_history);
+    }
 
     public void Do(HairEdit edit) => _history.Do(edit.Command);
     public bool Undo() => _history.Undo();
@@ -60,14 +65,13 @@ public static class HairStyleIO
     public static byte[] Save(HairScene scene)
     {
         using var stream = new MemoryStream();
-        HairstyleFile.Write(scene, stream);
+        HairstyleFile.Save(scene, stream);
         return stream.ToArray();
     }
 
     /// <summary>Applies saved style bytes; a corrupt blob throws (InvalidDataException) and leaves the scene unchanged.</summary>
     public static void Load(HairScene scene, byte[] data)
     {
-        using var stream = new MemoryStream(data, writable: false);
-        HairstyleFile.Read(stream, scene);
+        HairstyleFile.LoadInto(scene, data);
     }
 }

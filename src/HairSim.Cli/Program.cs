@@ -5,6 +5,7 @@ var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
 {
     ["run"] = (RunCommand.Help, RunCommand.Execute),
     ["render-bench"] = (RenderBenchCommand.Help, RenderBenchCommand.Execute),
+    ["style"] = (StyleCommand.Help, StyleCommand.Execute),
 };
 
 if (args.Length == 0 || args[0] is "-h" or "--help" or "help")

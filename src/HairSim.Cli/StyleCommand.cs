@@ -1,0 +1,171 @@
+using System.Diagnostics;
+using System.Globalization;
+using System.Numerics;
+using HairSim;
+using HairSim.Editing;
+using HairSim.IO;
+
+namespace HairSim.Cli;
+
+/// <summary>
+/// A scripted styling session on the reference scene: settle, cut a chin-length bob (front view), select the
+/// fringe and fit a curl to it (side view), simulate on, then export .hair / .obj / .usda, save the hairstyle
+/// and draw before/after pictures. --bench times a full-scene cut instead.
+/// </summary>
+public static class StyleCommand
+{
+    public const string Help = "scripted cut + fit on the reference scene, exports .hair/.obj/.usda/.hairstyle/.svg: --out ./out --settle 1 --after 2 --stiffness 0.05 --sheets --strands --particles --bench [--runs 30]";
+
+    private static readonly CultureInfo Ci = CultureInfo.InvariantCulture;
+
+    public static int Execute(CliArgs a)
+    {
+        string outDir = a.String("out", "out");
+        double settle = a.Double("settle", 1), after = a.Double("after", 2);
+        float stiffness = (float)a.Double("stiffness", 0.05);
+        var groom = GroomSettings.Reference();
+        groom.SheetCount = a.Int("sheets", groom.SheetCount);
+        groom.StrandsPerSheet = a.Int("strands", groom.StrandsPerSheet);
+        groom.ParticlesPerStrand = a.Int("particles", groom.ParticlesPerStrand);
+        bool bench = a.Flag("bench");
+        int runs = a.Int("runs", 30);
+        a.RejectUnknown();
+        if (settle < 0 || settle > 60 || after < 0 || after > 60) throw new ArgumentException("--settle and --after must be in 0 … 60 seconds.");
+        if (runs < 1 || runs > 10_000) throw new ArgumentException("--runs must be in 1 … 10000.");
+
+        var settings = new SimulationSettings { Path = SolverPath.Fast };
+        var scene = GroomBuilder.BuildScene(groom, settings);
+        var w = scene.World;
+        using var dispatcher = ThreadDispatchers.CreateDefault();
+        var sim = new HairSimulation(scene, dispatcher: dispatcher);
+        Console.WriteLine($"scene: {w.SheetCount} sheets × {groom.StrandsPerSheet} strands × {groom.ParticlesPerStrand} particles = {w.StrandCount:N0} strands; global shape stiffness {stiffness.ToString(Ci)}");
+        Simulate(sim, settle, "settling");
+        var history = new EditHistory();
+        scene.SetComponent(history);
+        // The settled hair becomes the rest pose, so the styling stiffness holds it hanging (not as grown, standing out).
+        history.Do(HairEditor.BakeRestPose(scene));
+        settings.GlobalShapeStiffness = stiffness;
+        scene.SettingsChanged();
+
+        var front = StrokeCamera.LookAtOrthographic(new Vector3(0, -0.1f, 2f), new Vector3(0, -0.1f, 0), Vector3.UnitY, 0.7f, new Vector2(800, 800));
+        var side = StrokeCamera.LookAtOrthographic(new Vector3(-2f, -0.05f, 0), new Vector3(0, -0.05f, 0), Vector3.UnitY, 0.5f, new Vector2(800, 800));
+        // A bob: a horizontal stroke across the whole picture at chin height (bottom of the head ellipsoid), through all layers.
+        var chin = ScreenOf(front, new Vector3(0, groom.HeadCenter.Y - groom.HeadRadii.Y, 0));
+        var cutStroke = new Stroke([new Vector2(5, chin.Y), new Vector2(795, chin.Y)], front);
+        var cutOptions = new CutOptions { Reach = CutReach.AllThrough, MinRemainingLength = 0.02f };
+        if (bench) return Bench(scene, history, cutStroke, cutOptions, runs);
+
+        Directory.CreateDirectory(outDir);
+        var fringeArea = SelectionArea.Rectangle(ScreenOf(side, new Vector3(0, 0.075f, 0.055f)), ScreenOf(side, new Vector3(0, 0.02f, 0.12f)));
+        var fringe = HairEditor.Select(scene, side, fringeArea, new SelectionOptions { RootsOnly = true });
+        var mask = fringe.Mask.ToArray();
+        Svg(outDir, "before", scene, mask);
+
+        var sw = Stopwatch.StartNew();
+        var cut = HairEditor.Cut(scene, cutStroke, cutOptions);
+        double cutMs = sw.Elapsed.TotalMilliseconds;
+        history.Do(cut);
+        Console.WriteLine(string.Create(Ci, $"cut: {cut.Strands.Count:N0} strands cut at chin height (plan {cutMs:F1} ms, undo memory {cut.MemoryBytes / 1e6:F1} MB)"));
+
+        if (fringe.Count == 0) throw new ArgumentException("The fringe selection is empty; the scripted fit needs the reference head.");
+        var key = KeyCurve.FromStrands(w, fringe.Strands);
+        var root = key.Root;
+        // A curl in the side view: forward and down from the hairline, then a 2.5 cm loop turned 1.5 times.
+        var curl = new List<Vector2> { ScreenOf(side, root) };
+        var start = root + new Vector3(0, -0.02f, 0.03f);
+        var centre = start + new Vector3(0, -0.025f, 0);
+        for (int k = 0; k <= 120; k++)
+        {
+            float t = 1.5f * 2 * MathF.PI * k / 120;
+            curl.Add(ScreenOf(side, centre + 0.025f * new Vector3(0, MathF.Cos(t), MathF.Sin(t))));
+        }
+        sw.Restart();
+        var fit = HairEditor.Fit(scene, fringe, new Stroke(curl, side));
+        double fitMs = sw.Elapsed.TotalMilliseconds;
+        history.Do(fit);
+        Console.WriteLine(string.Create(Ci, $"fit: {fringe.Count:N0} fringe strands fitted to a curl stroke (plan {fitMs:F1} ms, key curve {key.Length * 100:F1} cm, stroke {fit.StrokeLength * 100:F1} cm{(fit.Extended ? ", extended straight" : "")})"));
+
+        Simulate(sim, after, "simulating");
+        var m = WorldMetrics.Measure(scene);
+        Console.WriteLine(string.Create(Ci, $"after {after:F1} s: non-finite {m.NonFinite}, max edge stretch {m.MaxEdgeStretch * 100:F3} %, fringe tip–root / length {Curliness(w, fringe):F3} (1 = hanging straight)"));
+
+        var curves = StrandCurves.FromWorld(w);
+        var files = new (string Name, Action<string> Write)[]
+        {
+            ("hairstyle.hair", p => CurveExport.WriteCyHair(p, curves)),
+            ("hairstyle.obj", p => CurveExport.WriteObj(p, curves)),
+            ("hairstyle.usda", p => CurveExport.WriteUsda(p, curves)),
+            ("hairstyle.hairstyle", p => HairstyleFile.Save(scene, p)),
+        };
+        foreach (var (name, write) in files)
+        {
+            var path = Path.Combine(outDir, name);
+            write(path);
+            Console.WriteLine(string.Create(Ci, $"wrote {path} ({new FileInfo(path).Length / 1024.0:F0} KiB)"));
+        }
+        var reloaded = HairstyleFile.Load(Path.Combine(outDir, "hairstyle.hairstyle"));
+        Console.WriteLine($"hairstyle file reloads bit-exact: {reloaded.World.BitEquals(w)}");
+        Svg(outDir, "after", scene, mask);
+        return m.NonFinite == 0 && reloaded.World.BitEquals(w) ? 0 : 3;
+    }
+
+    private static Vector2 ScreenOf(StrokeCamera cam, Vector3 p)
+    {
+        if (!cam.Project(p, out var s, out _)) throw new ArgumentException("Scripted point is behind the camera.");
+        return Vector2.Clamp(s, Vector2.Zero, cam.ViewportSize);
+    }
+
+    private static void Simulate(HairSimulation sim, double seconds, string label)
+    {
+        int frames = (int)Math.Round(seconds * 60);
+        if (frames == 0) return;
+        var progress = new Progress(label, frames);
+        for (int f = 0; f < frames; f++) { sim.Step(1f / 60f); progress.Report(f + 1); }
+    }
+
+    private static double Curliness(HairWorld w, StrandSelection sel)
+    {
+        double sum = 0;
+        foreach (int s in sel.Strands)
+        {
+            double len = 0;
+            for (int k = 1; k < w.StrandParticleCount[s]; k++) len += w.RestLength[w.StrandFirst[s] + k];
+            sum += Vector3.Distance(w.GetPosition(w.RootIndex(s)), w.GetPosition(w.TipIndex(s))) / len;
+        }
+        return sum / sel.Count;
+    }
+
+    private static void Svg(string dir, string stage, HairScene scene, bool[] mask)
+    {
+        foreach (var view in new[] { SvgExport.View.Front, SvgExport.View.Side })
+        {
+            var path = Path.Combine(dir, $"{stage}-{view.ToString().ToLowerInvariant()}.svg");
+            SvgExport.Write(path, scene, view, 0.6f, 600, mask, $"{stage}, {view.ToString().ToLowerInvariant()} view (fringe in red, every 10th other strand)", every: 10);
+            Console.WriteLine(string.Create(Ci, $"wrote {path} ({new FileInfo(path).Length / 1024.0:F0} KiB)"));
+        }
+    }
+
+    /// <summary>Times the full-scene cut: planning alone, and plan + apply + undo (which leaves the world as it was).</summary>
+    private static int Bench(HairScene scene, EditHistory history, Stroke stroke, CutOptions options, int runs)
+    {
+        int strands = HairEditor.Cut(scene, stroke, options).Strands.Count;
+        for (int k = 0; k < 5; k++) { history.Do(HairEditor.Cut(scene, stroke, options)); history.Undo(); } // warm-up (JIT, caches)
+        var plan = new double[runs];
+        var full = new double[runs];
+        var sw = new Stopwatch();
+        for (int r = 0; r < runs; r++)
+        {
+            sw.Restart();
+            var cmd = HairEditor.Cut(scene, stroke, options);
+            plan[r] = sw.Elapsed.TotalMilliseconds;
+            history.Do(cmd);
+            history.Undo();
+            full[r] = sw.Elapsed.TotalMilliseconds;
+        }
+        Array.Sort(plan); Array.Sort(full);
+        Console.WriteLine(string.Create(Ci, $"full-scene cut ({scene.World.StrandCount:N0} strands, {scene.World.ParticleCount:N0} particles, stroke of {stroke.Count} points, {strands:N0} strands cut), one core, {runs} runs after 5 warm-up:"));
+        Console.WriteLine(string.Create(Ci, $"  plan (find crossings):     median {plan[runs / 2]:F2} ms, min {plan[0]:F2} ms, max {plan[^1]:F2} ms"));
+        Console.WriteLine(string.Create(Ci, $"  plan + apply + undo:       median {full[runs / 2]:F2} ms, min {full[0]:F2} ms, max {full[^1]:F2} ms"));
+        return 0;
+    }
+}

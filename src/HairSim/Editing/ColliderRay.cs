@@ -1,0 +1,63 @@
+using System.Numerics;
+
+namespace HairSim.Editing;
+
+/// <summary>Ray casts against head colliders: decides whether a strand point is in front of the head.</summary>
+public static class ColliderRay
+{
+    /// <summary>Nearest hit t ≥ 0 of the ray o + t·d (d unit) with a world-space collider.</summary>
+    public static bool Intersect(in Collider c, Vector3 o, Vector3 d, out float t)
+    {
+        switch (c.Kind)
+        {
+            case ColliderKind.Ellipsoid:
+            {
+                var inv = Quaternion.Conjugate(c.Rotation);
+                var lo = Vector3.Transform(o - c.Center, inv) / c.Radii;
+                var ld = Vector3.Transform(d, inv) / c.Radii;
+                return UnitSphere(lo, ld, out t);
+            }
+            case ColliderKind.Sphere:
+                return UnitSphere((o - c.Center) / c.Radius, d / c.Radius, out t);
+            default:
+                return Capsule(c.Center, c.End, c.Radius, o, d, out t);
+        }
+    }
+
+    /// <summary>First t ≥ 0 where |o + t·d| = 1 (or 0 if o is inside).</summary>
+    private static bool UnitSphere(Vector3 o, Vector3 d, out float t)
+    {
+        double a = Vector3.Dot(d, d), b = Vector3.Dot(o, d), c = Vector3.Dot(o, o) - 1.0;
+        t = 0f;
+        if (c <= 0) return true;
+        double disc = b * b - a * c;
+        if (disc < 0 || b > 0 || a < 1e-30) return false;
+        t = (float)((-b - Math.Sqrt(disc)) / a);
+        return true;
+    }
+
+    private static bool Capsule(Vector3 pa, Vector3 pb, float r, Vector3 o, Vector3 d, out float t)
+    {
+        // Cylinder body, then the two end spheres; keep the nearest hit.
+        bool hit = false;
+        t = float.MaxValue;
+        var ba = pb - pa;
+        double baba = Vector3.Dot(ba, ba);
+        if (baba > 1e-18)
+        {
+            var oa = o - pa;
+            double bard = Vector3.Dot(ba, d), baoa = Vector3.Dot(ba, oa), rdoa = Vector3.Dot(d, oa), oaoa = Vector3.Dot(oa, oa);
+            double a = baba - bard * bard, b = baba * rdoa - baoa * bard, c = baba * oaoa - baoa * baoa - (double)r * r * baba;
+            double h = b * b - a * c;
+            if (a > 1e-18 && h >= 0)
+            {
+                double tc = (-b - Math.Sqrt(h)) / a;
+                double y = baoa + tc * bard;
+                if (tc >= 0 && y > 0 && y < baba) { t = (float)tc; hit = true; }
+            }
+        }
+        if (UnitSphere((o - pa) / r, d / r, out float ta) && ta < t) { t = ta; hit = true; }
+        if (UnitSphere((o - pb) / r, d / r, out float tb) && tb < t) { t = tb; hit = true; }
+        return hit;
+    }
+}

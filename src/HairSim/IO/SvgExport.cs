@@ -1,0 +1,70 @@
+using System.Globalization;
+using System.Numerics;
+
+namespace HairSim.IO;
+
+/// <summary>Simple pictures of a hairstyle: strands as polylines in an orthographic front or side view, with the head outline.</summary>
+public static class SvgExport
+{
+    public enum View { Front, Side }
+
+    /// <summary>
+    /// Draws the live strands of the world (world space) looking along −Z (front) or −X (side), fitted to the
+    /// given extent (metres around the head centre). Strands flagged in <paramref name="highlight"/> are drawn in a second colour;
+    /// of the others only every <paramref name="every"/>-th is drawn (keeps pictures of the full scene small).
+    /// </summary>
+    public static void Write(TextWriter o, HairScene scene, View view, float extent = 0.6f, int pixels = 600, ReadOnlySpan<bool> highlight = default, string? title = null, int every = 1)
+    {
+        ArgumentNullException.ThrowIfNull(o);
+        ArgumentNullException.ThrowIfNull(scene);
+        if (every < 1) throw new ArgumentOutOfRangeException(nameof(every), every, "Draw at least every strand once (every ≥ 1).");
+        if (!float.IsFinite(extent) || extent <= 0f) throw new ArgumentOutOfRangeException(nameof(extent), extent, "Extent must be positive.");
+        if (pixels < 16 || pixels > 16384) throw new ArgumentOutOfRangeException(nameof(pixels), pixels, "Picture size must be 16 … 16384 pixels.");
+        var w = scene.World;
+        var ci = CultureInfo.InvariantCulture;
+        var centre = w.Head.Position;
+        float scale = pixels / extent;
+        Vector2 Map(Vector3 p)
+        {
+            var d = p - centre;
+            float x = view == View.Front ? d.X : -d.Z;
+            return new Vector2(pixels * 0.5f + x * scale, pixels * 0.35f - d.Y * scale);
+        }
+        o.Write($"<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{pixels}\" height=\"{pixels}\" viewBox=\"0 0 {pixels} {pixels}\">\n");
+        o.Write("<rect width=\"100%\" height=\"100%\" fill=\"#fbfaf7\"/>\n");
+        foreach (var c in scene.Colliders)
+        {
+            if (c.Kind != ColliderKind.Ellipsoid && c.Kind != ColliderKind.Sphere) continue;
+            var wc = c.ToWorld(w.Head);
+            var m = Map(wc.Center);
+            float rx = (view == View.Front ? wc.Radii.X : wc.Radii.Z) * scale, ry = wc.Radii.Y * scale;
+            o.Write(string.Create(ci, $"<ellipse cx=\"{m.X:F1}\" cy=\"{m.Y:F1}\" rx=\"{rx:F1}\" ry=\"{ry:F1}\" fill=\"#f1d9c4\" stroke=\"#c9a98e\"/>\n"));
+        }
+        var sb = new System.Text.StringBuilder();
+        for (int pass = 0; pass < 2; pass++)
+        {
+            o.Write(pass == 0 ? "<g fill=\"none\" stroke=\"#5a3b24\" stroke-width=\"0.5\" stroke-opacity=\"0.5\">\n" : "<g fill=\"none\" stroke=\"#d2452b\" stroke-width=\"0.7\">\n");
+            for (int s = 0; s < w.StrandCount; s++)
+            {
+                bool lit = !highlight.IsEmpty && s < highlight.Length && highlight[s];
+                if (lit != (pass == 1) || (!lit && s % every != 0)) continue;
+                sb.Clear();
+                sb.Append("<polyline points=\"");
+                for (int k = 0; k < w.StrandParticleCount[s]; k++)
+                {
+                    var p = Map(w.GetPosition(w.StrandFirst[s] + k));
+                    sb.Append(ci, $"{p.X:F1},{p.Y:F1} ");
+                }
+                sb.Append("\"/>\n");
+                o.Write(sb.ToString());
+            }
+            o.Write("</g>\n");
+        }
+        if (title != null)
+            o.Write($"<text x=\"10\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\" fill=\"#333\">{System.Security.SecurityElement.Escape(title)}</text>\n");
+        o.Write("</svg>\n");
+    }
+
+    public static void Write(string path, HairScene scene, View view, float extent = 0.6f, int pixels = 600, bool[]? highlight = null, string? title = null, int every = 1) =>
+        CurveExport.WriteText(path, o => Write(o, scene, view, extent, pixels, highlight, title, every));
+}
