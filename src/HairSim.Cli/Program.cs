@@ -4,6 +4,8 @@ using HairSim.Cli;
 var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
 {
     ["run"] = (RunCommand.Help, RunCommand.Execute),
+    ["report"] = (ReportCommand.Help, ReportCommand.Execute),
+    ["stability"] = (StabilityCommand.Help, StabilityCommand.Execute),
 };
 
 if (args.Length == 0 || args[0] is "-h" or "--help" or "help")

@@ -12,6 +12,8 @@ public sealed class HairPipeline
     private readonly IHairSystem[] _all;
     private readonly IThreadDispatcher _dispatcher;
     private readonly FrameContext _ctx = new();
+    private readonly SimulationSettings _guarded = new();
+    private readonly float _reach;
     private readonly Action<int> _substepJob, _frameEndJob;
     private int _jobCount;
 
@@ -25,6 +27,7 @@ public sealed class HairPipeline
         _substepJob = RunSubstepJob;
         _frameEndJob = RunFrameEndJob;
         SystemNames = Array.ConvertAll(_all, s => s.Name);
+        _reach = StabilityGuards.Reach(scene.World);
     }
 
     public IReadOnlyList<IHairSystem> Systems => _all;
@@ -40,16 +43,20 @@ public sealed class HairPipeline
         if (!float.IsFinite(dt) || dt <= 0f || dt > 1f)
             throw new ArgumentOutOfRangeException(nameof(dt), dt, "Frame time must be in (0, 1] seconds.");
         var world = _scene.World;
-        var st = _scene.Settings;
         var ctx = _ctx;
+        var delta = RigidTransform.Delta(world.Head, headTarget);
+        var requested = _scene.Settings;
+        bool teleported = (headTarget.Position - world.Head.Position).Length() > requested.TeleportDistance || delta.Angle > requested.TeleportAngle;
+        // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
+        StabilityGuards.Apply(requested, _guarded, dt, (headTarget.Position - world.Head.Position).Length(), delta.Angle, teleported, _reach);
+        var st = _guarded;
         ctx.Settings = st;
         ctx.Dt = dt;
         ctx.Substeps = st.Substeps;
         ctx.H = dt / st.Substeps;
         ctx.HeadStart = world.Head;
         ctx.HeadEnd = headTarget;
-        var delta = RigidTransform.Delta(world.Head, headTarget);
-        ctx.Teleported = (headTarget.Position - world.Head.Position).Length() > st.TeleportDistance || delta.Angle > st.TeleportAngle;
+        ctx.Teleported = teleported;
         ctx.TeleportDelta = ctx.Teleported ? delta : RigidTransform.Identity;
 
         if (ctx.SubstepHeads.Length < st.Substeps) ctx.SubstepHeads = new RigidTransform[st.Substeps];

@@ -1,0 +1,90 @@
+namespace HairSim.Measurement;
+
+/// <summary>Every canonical case measured for one solver configuration, plus its run time.</summary>
+public sealed record ReportRow(
+    SolverConfiguration Config,
+    HangingResult Hanging,
+    CatenaryResult Catenary,
+    PendulumResult Pendulum,
+    CollisionResult Collision,
+    MotionResult Shake,
+    ConvergedError ShakeConverged,
+    MotionResult Teleport,
+    Timing Timing)
+{
+    /// <summary>Length error of the settled hanging strand: the figure the defaults must keep under 0.5 %.</summary>
+    public double LengthError => Hanging.LengthError;
+
+    /// <summary>
+    /// The error the Pareto front ranks by: the worst of the relative errors (hanging length and straightness,
+    /// catenary shape, shake peak stretch, shake tip drop against its converged run over L, and pendulum period
+    /// where a pendulum exists). The pendulum's energy loss is reported beside it but not ranked.
+    /// NaN if any case went non-finite.
+    /// </summary>
+    public double Error
+    {
+        get
+        {
+            double e = Max(Hanging.LengthError, Hanging.Straightness);
+            e = Max(e, Catenary.ShapeError);
+            e = Max(e, Shake.PeakStretch);
+            e = Max(e, ShakeConverged.Error / CanonicalCases.StrandLength);
+            if (Pendulum.Defined) e = Max(e, Pendulum.PeriodError);
+            if (NonFinite > 0) return double.NaN;
+            return e;
+        }
+    }
+
+    public int NonFinite => Collision.NonFinite + Shake.NonFinite + Teleport.NonFinite +
+        (double.IsFinite(Hanging.LengthError) ? 0 : 1) + (double.IsFinite(Catenary.ShapeError) ? 0 : 1);
+
+    private static double Max(double a, double b) => double.IsNaN(a) || double.IsNaN(b) ? double.NaN : Math.Max(a, b);
+}
+
+/// <summary>The configurations compared and the measurement of one of them.</summary>
+public static class ErrorReport
+{
+    public const int Hz = 60;
+
+    /// <summary>
+    /// Müller integration over α, substeps and length pass; the literal force over its spring rate (1/s²),
+    /// substeps and length pass. <paramref name="quick"/> keeps a handful for a fast check.
+    /// </summary>
+    public static List<SolverConfiguration> Configurations(bool quick)
+    {
+        var list = new List<SolverConfiguration>();
+        float[] alphas = quick ? [1f] : [0.25f, 0.5f, 1f];
+        int[] substeps = quick ? [1, 4, 16] : [1, 2, 4, 8, 16];
+        (LengthMode, int)[] lengths = quick
+            ? [(LengthMode.None, 4), (LengthMode.FollowTheLeader, 4), (LengthMode.Pbd, 4)]
+            : [(LengthMode.None, 4), (LengthMode.FollowTheLeader, 4), (LengthMode.Pbd, 1), (LengthMode.Pbd, 4)];
+        foreach (float a in alphas)
+            foreach (int n in substeps)
+                foreach (var (len, it) in lengths)
+                    list.Add(new SolverConfiguration(ShapeMatchMode.Muller, a, n, len, it));
+        float[] rates = quick ? [1000f] : [100f, 1000f, 10000f];
+        int[] literalSubsteps = quick ? [4] : [1, 4, 16];
+        foreach (float a in rates)
+            foreach (int n in literalSubsteps)
+                foreach (var len in quick ? new[] { LengthMode.None } : [LengthMode.None, LengthMode.FollowTheLeader])
+                    list.Add(new SolverConfiguration(ShapeMatchMode.LiteralForce, a, n, len));
+        return list;
+    }
+
+    /// <summary>Runs every canonical case for one configuration (settings = defaults with the configuration applied).</summary>
+    public static ReportRow Measure(SolverConfiguration config, SolverPath path, IThreadDispatcher? dispatcher, bool quick)
+    {
+        var st = config.ToSettings(null, path);
+        st.Guards = false; // measure exactly this configuration (the guards would raise 1 or 2 substeps to 4 at 60 Hz)
+        return new ReportRow(
+            config,
+            CanonicalCases.Hanging(st, Hz),
+            CanonicalCases.Catenary(st, Hz),
+            CanonicalCases.Pendulum(st, Hz),
+            CanonicalCases.CollisionSweep(st, Hz),
+            CanonicalCases.Shake(st, Hz),
+            CanonicalCases.ShakeAgainstConverged(st, Hz),
+            CanonicalCases.Teleport(st, Hz),
+            CanonicalCases.Time(st, Hz, dispatcher, frames: quick ? 20 : 60));
+    }
+}
