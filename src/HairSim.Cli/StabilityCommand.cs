@@ -74,7 +74,7 @@ public static class StabilityCommand
                 var s = Defaults(path); s.Alpha = alphas[r]; s.Substeps = 1; s.Length = LengthMode.None; s.Guards = false;
                 return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
             }));
-        grids.Add(new Grid("source-guarded-alpha-dt", "The source's scheme with the guards on (α clamped to 1, substeps ≤ 1/240 s, head travel ≤ 2 cm per substep)",
+        grids.Add(new Grid("source-guarded-alpha-dt", "The source's scheme with the guards on (α clamped to 1, substeps ≤ 1/60 s, head travel ≤ 2 cm per substep)",
             "α", alphaLabels, "frame time dt", dtLabels, (r, c) =>
             {
                 var s = Defaults(path); s.Alpha = alphas[r]; s.Substeps = 1; s.Length = LengthMode.None;

@@ -61,8 +61,8 @@ public sealed class SimulationSettings
     /// Off = exactly the requested settings (e.g. the source's scheme, faithfully).
     /// </summary>
     public bool Guards { get; set; } = true;
-    /// <summary>Longest substep (s) the guards allow; 0 = no limit. 1/240 s keeps the hair's look the same at any frame rate.</summary>
-    public float MaxSubstep { get; set; } = 1f / 240f;
+    /// <summary>Longest substep (s) the guards allow; 0 = no limit. A frame hitch then adds substeps instead of lengthening them.</summary>
+    public float MaxSubstep { get; set; } = 1f / 60f;
     /// <summary>Farthest (m) the guards let any point of the hair's reach move with the head in one substep; 0 = no limit.</summary>
     public float MaxHeadTravel { get; set; } = 0.02f;
 

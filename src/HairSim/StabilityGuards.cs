@@ -6,8 +6,8 @@ namespace HairSim;
 /// The guards the stability map asked for, applied per frame to a copy of the settings that every system reads
 /// (FrameContext.Settings), so the reference and the fast path both get them. See docs/stability.md.
 /// - Müller α is clamped to 1: above it the goal pull overshoots (α ≥ 2 flips sign every substep and never settles).
-/// - Substeps are raised so no substep is longer than MaxSubstep: Müller's α acts per substep, so a fixed substep
-///   length keeps the hair's stiffness the same when the frame rate drops.
+/// - Substeps are raised so no substep is longer than MaxSubstep (1/60 s): a frame hitch (or a 15 Hz device) adds
+///   substeps instead of lengthening them, so the goal pull and gravity per substep stay in the range measured stable.
 /// - Substeps are raised on frames where the head moves fast, so the pins and the head collider move at most
 ///   MaxHeadTravel per substep: a head that sweeps deep into the hair in one substep pushes particles out by more
 ///   than an edge length and tears the strand (the "near teleport" row of the map).

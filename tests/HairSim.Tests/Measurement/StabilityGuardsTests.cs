@@ -25,11 +25,14 @@ public class StabilityGuardsTests
     [Fact]
     public void LongFramesGetMoreSubstepsSoTheSubstepStaysShort()
     {
-        Assert.Equal(4, Guarded(new SimulationSettings(), 1 / 60f).Substeps);
-        Assert.Equal(16, Guarded(new SimulationSettings(), 1 / 15f).Substeps);
-        Assert.Equal(8, Guarded(new SimulationSettings { Substeps = 8 }, 1 / 60f).Substeps);
+        // Default limit 1/60 s: 4 substeps are enough down to 15 Hz, one substep only at 60 Hz and above.
+        Assert.Equal(4, Guarded(new SimulationSettings(), 1 / 15f).Substeps);
+        Assert.Equal(1, Guarded(new SimulationSettings { Substeps = 1 }, 1 / 60f).Substeps);
+        Assert.Equal(4, Guarded(new SimulationSettings { Substeps = 1 }, 1 / 15f).Substeps);
+        Assert.Equal(16, Guarded(new SimulationSettings { MaxSubstep = 1 / 240f }, 1 / 15f).Substeps);
+        Assert.Equal(8, Guarded(new SimulationSettings { Substeps = 8 }, 1 / 15f).Substeps);
         Assert.Equal(1, Guarded(new SimulationSettings { Substeps = 1, Guards = false }, 1 / 15f).Substeps);
-        Assert.Equal(240, Guarded(new SimulationSettings(), 1f).Substeps);
+        Assert.Equal(60, Guarded(new SimulationSettings(), 1f).Substeps);
         Assert.Equal(StabilityGuards.MaxSubsteps, Guarded(new SimulationSettings(), 1 / 60f, 100f).Substeps);
     }
 
@@ -44,7 +47,7 @@ public class StabilityGuardsTests
     [Fact]
     public void PipelineRunsTheGuardedSubsteps()
     {
-        var scene = GroomBuilder.BuildScene(CanonicalCases.SmallGroom(8, 2, 1));
+        var scene = GroomBuilder.BuildScene(CanonicalCases.SmallGroom(8, 2, 1), new SimulationSettings { MaxSubstep = 1 / 240f });
         var sim = new HairSimulation(scene);
         sim.Step(1 / 15f);
         Assert.Equal(16, sim.Pipeline.LastFrame.Substeps);
