@@ -211,18 +211,23 @@ public static class CanonicalCases
     /// <summary>
     /// The shake's mean tip drop against the same case converged: substeps are doubled (the step halved) until the
     /// metric changes by less than <paramref name="tolerance"/> metres between successive runs, or 256 substeps.
+    /// <paramref name="dropAtSubsteps"/> may supply (cached) tip drops of the same settings at other substep counts.
     /// </summary>
-    public static ConvergedError ShakeAgainstConverged(SimulationSettings settings, int hz, double tolerance = 1e-3)
+    public static ConvergedError ShakeAgainstConverged(SimulationSettings settings, int hz, double tolerance = 1e-3, Func<int, double>? dropAtSubsteps = null)
     {
-        double own = Shake(settings, hz).MeanTipDrop, previous = own;
+        dropAtSubsteps ??= n =>
+        {
+            var s = settings.Clone();
+            s.Substeps = n;
+            return Shake(s, hz).MeanTipDrop;
+        };
+        double own = dropAtSubsteps(settings.Substeps), previous = own;
         int substeps = settings.Substeps;
         double change = double.PositiveInfinity;
         while (substeps * 2 <= 256)
         {
             substeps *= 2;
-            var finer = settings.Clone();
-            finer.Substeps = substeps;
-            double next = Shake(finer, hz).MeanTipDrop;
+            double next = dropAtSubsteps(substeps);
             change = Math.Abs(next - previous);
             previous = next;
             if (change < tolerance) break;
