@@ -16,18 +16,19 @@ public sealed record ReportRow(
     public double LengthError => Hanging.LengthError;
 
     /// <summary>
-    /// The error the Pareto front ranks by: the worst of the relative errors (hanging length and straightness,
-    /// catenary shape, shake peak stretch and pendulum period
-    /// where a pendulum exists). The pendulum's energy loss is reported beside it but not ranked.
-    /// NaN if any case went non-finite.
+    /// The error the Pareto front ranks by, for hair with free tips: the worst of the relative errors of the hanging
+    /// strand (length, straightness), the shake and the teleport (peak stretch) and the pendulum period (where a
+    /// pendulum exists). Reported beside it but not ranked: the catenary (a second pin, which hair does not have and
+    /// follow-the-leader cannot hold), the pendulum's energy loss (small next to the default damping), the converged
+    /// shake. NaN if any case went non-finite.
     /// </summary>
     public double Error
     {
         get
         {
             double e = Max(Hanging.LengthError, Hanging.Straightness);
-            e = Max(e, Catenary.ShapeError);
             e = Max(e, Shake.PeakStretch);
+            e = Max(e, Teleport.PeakStretch);
             if (Pendulum.Defined) e = Max(e, Pendulum.PeriodError);
             if (NonFinite > 0) return double.NaN;
             return e;
