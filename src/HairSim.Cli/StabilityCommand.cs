@@ -81,7 +81,13 @@ public static class StabilityCommand
                 return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
             }));
         float[] rates = quick ? [10f, 1000f] : [1f, 10f, 100f, 1000f];
-        grids.Add(new Grid("literal-alpha-dt", "Literal force (4 substeps, follow-the-leader): α (1/s²) × frame time, head shake",
+        grids.Add(new Grid("literal-alpha-dt", "The source's literal force, faithfully (1 substep, no length pass, guards off): α (1/s²) × frame time, head shake",
+            "α (1/s²)", Array.ConvertAll(rates, x => F($"α = {x:0}")), "frame time dt", dtLabels, (r, c) =>
+            {
+                var s = Defaults(path); s.Mode = ShapeMatchMode.LiteralForce; s.Alpha = rates[r]; s.Substeps = 1; s.Length = LengthMode.None; s.Guards = false;
+                return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
+            }));
+        grids.Add(new Grid("literal-defaults-alpha-dt", "Literal force with the other defaults (4 substeps, follow-the-leader, guards on): α (1/s²) × frame time, head shake",
             "α (1/s²)", Array.ConvertAll(rates, x => F($"α = {x:0}")), "frame time dt", dtLabels, (r, c) =>
             {
                 var s = Defaults(path); s.Mode = ShapeMatchMode.LiteralForce; s.Alpha = rates[r];
@@ -162,6 +168,24 @@ public static class StabilityCommand
         3. no free particle is inside a collider after any frame;
         4. the energy dies down once the head stops: the mean kinetic energy of the last 0.5 s is at most 0.9 × that of
            the 0.5 s before, or below 1e-4 J/kg (hair at rest).
+
+        Guards (SimulationSettings.Guards, on by default; StabilityGuards.cs, applied in HairPipeline.Step to the copy of
+        the settings every system reads, so the fast path inherits them):
+        - **α clamp**: in Müller mode α above 1 is used as 1 (α = 2 reverses each particle's offset from its goal every
+          substep; above 2 it grows). Without it: the source's scheme at α = 4 never calms down (✗ E↑ in the grid "The
+          source's scheme, faithfully").
+        - **Substep length ≤ MaxSubstep** (1/60 s): a long frame gets more substeps. Without it: the source's scheme at
+          α = 0.5 and 1/30 s never calms down.
+        - **Head travel ≤ MaxHeadTravel per substep** (2 cm, measured at the hair's reach): a head that jumps just under
+          the teleport limits gets enough substeps that the collider does not sweep deep into the hair in one substep.
+          Without it: NearTeleport tears edges by 41–72 % (columns "guards off" of the extreme cases).
+        - Already in the core and kept: the speed limit MaxSpeed (40 m/s), which bounds every displacement, and the
+          teleport handling (a jump over TeleportDistance / TeleportAngle carries the hair rigidly).
+        Not changed by the guards, because it is the user's model and not a numerical failure: α = 0 with no length pass
+        has nothing holding a strand together, so its free particles fall (at most at MaxSpeed) and never stop (✗ E↑).
+        The source's scheme stays stretchy with the guards (orange): only a length pass holds length.
+        The literal force is not guarded: it is not the default, Validate caps its α at 1000/s², and nowhere in the map
+        did it go numerically unstable; its failure is softness (without a length pass it stretches many times over).
 
         Cells show the worst edge elongation seen. ✓ stable, ~ only the stretch limit failed (finite and calm: the source's
         stretchy hair), ✗ unstable (non-finite, energy not dying down, or left inside the head; the reason is given).

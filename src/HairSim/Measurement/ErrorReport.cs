@@ -99,7 +99,7 @@ public static class ErrorReport
 
     /// <summary>Times one configuration (run this alone on the machine, one configuration after another).</summary>
     public static Timing Time(SolverConfiguration config, SolverPath path, IThreadDispatcher? dispatcher, bool quick) =>
-        CanonicalCases.Time(Settings(config, path), Hz, dispatcher, frames: quick ? 20 : 60);
+        CanonicalCases.Time(Settings(config, path), Hz, dispatcher, frames: quick ? 10 : 20);
 
     private static SimulationSettings Settings(SolverConfiguration config, SolverPath path)
     {

@@ -97,7 +97,12 @@ public static class SvgPlot
     {
         int rows = rowLabels.Count, cols = columnLabels.Count;
         if (cells.GetLength(0) != rows || cells.GetLength(1) != cols) throw new ArgumentException("The cell grid does not match the labels.", nameof(cells));
-        const int cw = 78, ch = 30, left = 150, top = 70;
+        // Cells as wide as the longest column label or cell text (about 7 px a character at this font size).
+        int longest = 8;
+        foreach (var c in columnLabels) longest = Math.Max(longest, c.Length);
+        foreach (var c in cells) longest = Math.Max(longest, c.Text.Length);
+        int cw = 12 + 7 * longest;
+        const int ch = 30, left = 150, top = 70;
         int width = left + cols * cw + 20, height = top + rows * ch + 30 + 20 * legend.Count;
         var sb = new StringBuilder();
         Header(sb, width, height, title);
