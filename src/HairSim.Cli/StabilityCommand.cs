@@ -160,6 +160,13 @@ public static class StabilityCommand
         settings except what the row and column change. The head moves (shake, teleport, spin) and then holds still for
         the last second; every value is measured after every frame.
 
+        Extreme cases: Shake (head shakes ±40° at 1.5 Hz, 2 s); Teleport (the head jumps 1 m and turns 120° in one
+        frame: carried rigidly); NearTeleport (jumps 0.45 m and turns 55° in one frame, just under the teleport limits of
+        0.5 m and 60°); FastSpin (5 turns/s for 2 s, then stops dead); VeryFastSpin (20 turns/s: at 60 Hz that is 120°
+        a frame, so every frame counts as a teleport and the hair turns rigidly); ZeroLengthEdges (every free particle
+        starts on its root); CoincidentParticles (particles start in coincident pairs); StartInsideHead (free particles
+        start scattered inside the head ellipsoid).
+
         **Stable** means all of:
         1. every position and velocity stays finite;
         2. no edge is ever stretched by 50 % or more (l / l0 − 1 < 0.5 after every frame). Compression is not counted
