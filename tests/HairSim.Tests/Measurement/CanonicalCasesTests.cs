@@ -53,6 +53,17 @@ public class CanonicalCasesTests
         Assert.False(CanonicalCases.Pendulum(Config(ShapeMatchMode.Muller, 1f, 4, LengthMode.None), 60).Defined);
 
     [Fact]
+    public void GuardsChangeNothingForTheDefaultsInTheReportCases()
+    {
+        // The report measures with the guards off; with the defaults at 60 Hz that must be the same run.
+        var on = new SimulationSettings();
+        var off = new SimulationSettings { Guards = false };
+        Assert.Equal(CanonicalCases.Shake(off, 60), CanonicalCases.Shake(on, 60));
+        Assert.Equal(CanonicalCases.CollisionSweep(off, 60), CanonicalCases.CollisionSweep(on, 60));
+        Assert.Equal(CanonicalCases.Hanging(off, 60), CanonicalCases.Hanging(on, 60));
+    }
+
+    [Fact]
     public void TeleportCarriesTheHairWithoutStretch()
     {
         var r = CanonicalCases.Teleport(new SimulationSettings(), 60);

@@ -6,21 +6,21 @@ namespace HairSim.Tests.Measurement;
 
 /// <summary>
 /// Thousands of random configurations (solver settings, strand sizes, frame times, gravity, head motion, degenerate
-/// starting states), default guards on: every value stays finite, lengths stay bounded, nothing is left inside the head.
+/// starting states) on both solver paths, default guards on: every value stays finite, lengths stay bounded, nothing is left inside the head.
 /// </summary>
 public class PropertyTests
 {
     /// <summary>One random scene and how it is driven.</summary>
     public sealed record RandomCase(
         int Particles, int Sheets, int StrandsPerSheet, ShapeMatchMode Mode, float AlphaShare, int Substeps, LengthMode Length,
-        int LengthIterations, int Hz, float GravityScale, float Damping, int Start, int Motion, float Rate)
+        int LengthIterations, int Hz, float GravityScale, float Damping, int Start, int Motion, float Rate, SolverPath Path)
     {
         public SimulationSettings Settings() => new()
         {
             Mode = Mode,
             Alpha = Mode == ShapeMatchMode.Muller ? 4f * AlphaShare : 1000f * AlphaShare,
             Substeps = Substeps, Length = Length, LengthIterations = LengthIterations,
-            Gravity = new Vector3(0f, -9.81f, 0f) * GravityScale, Damping = Damping,
+            Gravity = new Vector3(0f, -9.81f, 0f) * GravityScale, Damping = Damping, Path = Path,
         };
 
         /// <summary>Head pose for frame f: still, shaking, spinning at up to 30 turns/s, or jumping about (some jumps are teleports).</summary>
@@ -35,9 +35,10 @@ public class PropertyTests
     }
 
     private static readonly Gen<RandomCase> Cases =
-        Gen.Select(Gen.Int[2, 40], Gen.Int[1, 3], Gen.Int[1, 3], Gen.Enum<ShapeMatchMode>(), Gen.Float[0f, 1f], Gen.Int[1, 8], Gen.Enum<LengthMode>())
+        Gen.Select(Gen.Int[2, 40], Gen.Int[1, 3], Gen.Int[1, 3], Gen.Enum<ShapeMatchMode>(), Gen.Float[0f, 1f], Gen.Int[1, 8], Gen.Enum<LengthMode>(), Gen.Enum<SolverPath>(),
+               (p, sh, st, mode, alpha, sub, len, path) => (p, sh, st, mode, alpha, sub, len, path))
            .Select(Gen.Int[1, 8], Gen.Int[15, 960], Gen.Float[1f, 100f], Gen.Float[0f, 10f], Gen.Int[0, 3], Gen.Int[0, 3], Gen.Float[0f, 1f],
-               (a, it, hz, g, d, start, motion, rate) => new RandomCase(a.Item1, a.Item2, a.Item3, a.Item4, a.Item5, a.Item6, a.Item7, it, hz, g, d, start, motion, rate));
+               (a, it, hz, g, d, start, motion, rate) => new RandomCase(a.p, a.sh, a.st, a.mode, a.alpha, a.sub, a.len, it, hz, g, d, start, motion, rate, a.path));
 
     private const int Frames = 12;
 
