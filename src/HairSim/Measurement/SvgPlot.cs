@@ -103,7 +103,7 @@ public static class SvgPlot
         foreach (var c in cells) longest = Math.Max(longest, c.Text.Length);
         int cw = 12 + 7 * longest;
         const int ch = 30, left = 150, top = 70;
-        int width = left + cols * cw + 20, height = top + rows * ch + 30 + 20 * legend.Count;
+        int width = Math.Max(left + cols * cw + 20, left + 460), height = top + rows * ch + 30 + 20 * legend.Count;
         var sb = new StringBuilder();
         Header(sb, width, height, title);
         sb.Append(F($"<text x='{left + cols * cw / 2}' y='{top - 32}' text-anchor='middle'>{Esc(columnAxis)}</text>\n"));
