@@ -13,7 +13,8 @@ public sealed class HairPipeline
     private readonly IThreadDispatcher _dispatcher;
     private readonly FrameContext _ctx = new();
     private readonly SimulationSettings _guarded = new();
-    private readonly float _reach;
+    private float _reach;
+    private int _reachStamp;
     private readonly Action<int> _substepJob, _frameEndJob;
     private int _jobCount;
 
@@ -28,6 +29,7 @@ public sealed class HairPipeline
         _frameEndJob = RunFrameEndJob;
         SystemNames = Array.ConvertAll(_all, s => s.Name);
         _reach = StabilityGuards.Reach(scene.World);
+        _reachStamp = scene.World.EditStamp;
     }
 
     public IReadOnlyList<IHairSystem> Systems => _all;
@@ -46,9 +48,11 @@ public sealed class HairPipeline
         var ctx = _ctx;
         var delta = RigidTransform.Delta(world.Head, headTarget);
         var requested = _scene.Settings;
-        bool teleported = (headTarget.Position - world.Head.Position).Length() > requested.TeleportDistance || delta.Angle > requested.TeleportAngle;
+        float headMove = (headTarget.Position - world.Head.Position).Length();
+        bool teleported = headMove > requested.TeleportDistance || delta.Angle > requested.TeleportAngle;
+        if (world.EditStamp != _reachStamp) { _reach = StabilityGuards.Reach(world); _reachStamp = world.EditStamp; } // only after edits
         // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
-        StabilityGuards.Apply(requested, _guarded, dt, (headTarget.Position - world.Head.Position).Length(), delta.Angle, teleported, _reach);
+        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _reach);
         var st = _guarded;
         ctx.Settings = st;
         ctx.Dt = dt;
