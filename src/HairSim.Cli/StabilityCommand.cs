@@ -192,7 +192,8 @@ public static class StabilityCommand
         has nothing holding a strand together, so its free particles fall (at most at MaxSpeed) and never stop (✗ E↑).
         The source's scheme stays stretchy with the guards (orange): only a length pass holds length.
         The literal force is not guarded: it is not the default, Validate caps its α at 1000/s², and nowhere in the map
-        did it go numerically unstable; its failure is softness (without a length pass it stretches many times over).
+        did it blow up; its failure is softness (without a length pass it stretches many times over, and at α ≤ 10/s² its
+        strands are still stretching when the run ends, which the energy test marks ✗).
         Known limitation, not counted as unstable: strands of 64 particles and more (edges of 4 mm and less) get edges
         compressed by 50–97 % where the head's radial push-out puts neighbouring particles on nearly the same surface
         point (↓ in the particles × gravity grid); the strand stays finite, outside the head and calm.
