@@ -6,6 +6,8 @@ var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
     ["run"] = (RunCommand.Help, RunCommand.Execute),
     ["render-bench"] = (RenderBenchCommand.Help, RenderBenchCommand.Execute),
     ["style"] = (StyleCommand.Help, StyleCommand.Execute),
+    ["report"] = (ReportCommand.Help, ReportCommand.Execute),
+    ["stability"] = (StabilityCommand.Help, StabilityCommand.Execute),
 };
 
 if (args.Length == 0 || args[0] is "-h" or "--help" or "help")

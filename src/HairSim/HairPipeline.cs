@@ -12,6 +12,9 @@ public sealed class HairPipeline
     private readonly IHairSystem[] _all;
     private readonly IThreadDispatcher _dispatcher;
     private readonly FrameContext _ctx = new();
+    private readonly SimulationSettings _guarded = new();
+    private float _reach;
+    private int _reachStamp;
     private readonly Action<int> _substepJob, _frameEndJob;
     private int _jobCount;
 
@@ -25,6 +28,8 @@ public sealed class HairPipeline
         _substepJob = RunSubstepJob;
         _frameEndJob = RunFrameEndJob;
         SystemNames = Array.ConvertAll(_all, s => s.Name);
+        _reach = StabilityGuards.Reach(scene.World);
+        _reachStamp = scene.World.EditStamp;
     }
 
     public IReadOnlyList<IHairSystem> Systems => _all;
@@ -40,16 +45,22 @@ public sealed class HairPipeline
         if (!float.IsFinite(dt) || dt <= 0f || dt > 1f)
             throw new ArgumentOutOfRangeException(nameof(dt), dt, "Frame time must be in (0, 1] seconds.");
         var world = _scene.World;
-        var st = _scene.Settings;
         var ctx = _ctx;
+        var delta = RigidTransform.Delta(world.Head, headTarget);
+        var requested = _scene.Settings;
+        float headMove = (headTarget.Position - world.Head.Position).Length();
+        bool teleported = headMove > requested.TeleportDistance || delta.Angle > requested.TeleportAngle;
+        if (world.EditStamp != _reachStamp) { _reach = StabilityGuards.Reach(world); _reachStamp = world.EditStamp; } // only after edits
+        // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
+        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _reach);
+        var st = _guarded;
         ctx.Settings = st;
         ctx.Dt = dt;
         ctx.Substeps = st.Substeps;
         ctx.H = dt / st.Substeps;
         ctx.HeadStart = world.Head;
         ctx.HeadEnd = headTarget;
-        var delta = RigidTransform.Delta(world.Head, headTarget);
-        ctx.Teleported = (headTarget.Position - world.Head.Position).Length() > st.TeleportDistance || delta.Angle > st.TeleportAngle;
+        ctx.Teleported = teleported;
         ctx.TeleportDelta = ctx.Teleported ? delta : RigidTransform.Identity;
 
         if (ctx.SubstepHeads.Length < st.Substeps) ctx.SubstepHeads = new RigidTransform[st.Substeps];

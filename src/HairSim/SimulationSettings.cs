@@ -55,8 +55,28 @@ public sealed class SimulationSettings
     /// <summary>Head turns more than this (radians) in one frame count as a teleport.</summary>
     public float TeleportAngle { get; set; } = MathF.PI / 3f;
     public SolverPath Path { get; set; } = SolverPath.Reference;
+    /// <summary>
+    /// Stability guards (see StabilityGuards): α clamped to 1 in Müller mode, and automatic substepping so no substep
+    /// is longer than <see cref="MaxSubstep"/> and the head moves at most <see cref="MaxHeadTravel"/> per substep.
+    /// Off = exactly the requested settings (e.g. the source's scheme, faithfully).
+    /// </summary>
+    public bool Guards { get; set; } = true;
+    /// <summary>Longest substep (s) the guards allow; 0 = no limit. A frame hitch then adds substeps instead of lengthening them.</summary>
+    public float MaxSubstep { get; set; } = 1f / 60f;
+    /// <summary>Farthest (m) the guards let any point of the hair's reach move with the head in one substep; 0 = no limit.</summary>
+    public float MaxHeadTravel { get; set; } = 0.02f;
 
     public SimulationSettings Clone() => (SimulationSettings)MemberwiseClone();
+
+    /// <summary>Copies every setting into target without allocating (the pipeline's per-frame guarded copy).</summary>
+    public void CopyTo(SimulationSettings target)
+    {
+        target.Gravity = Gravity; target.Alpha = Alpha; target.GlobalShapeStiffness = GlobalShapeStiffness; target.Mode = Mode;
+        target.Damping = Damping; target.Substeps = Substeps; target.Length = Length; target.LengthIterations = LengthIterations;
+        target.LengthDamping = LengthDamping; target.ContactSlide = ContactSlide; target.MaxSpeed = MaxSpeed;
+        target.TeleportDistance = TeleportDistance; target.TeleportAngle = TeleportAngle; target.Path = Path;
+        target.Guards = Guards; target.MaxSubstep = MaxSubstep; target.MaxHeadTravel = MaxHeadTravel;
+    }
 
     public void Validate()
     {
@@ -71,6 +91,8 @@ public sealed class SimulationSettings
         Range(MaxSpeed, 0f, 1e6f, nameof(MaxSpeed));
         Range(TeleportDistance, 0f, 1e6f, nameof(TeleportDistance));
         Range(TeleportAngle, 0f, MathF.PI, nameof(TeleportAngle));
+        Range(MaxSubstep, 0f, 1f, nameof(MaxSubstep));
+        Range(MaxHeadTravel, 0f, 10f, nameof(MaxHeadTravel));
         if (!Enum.IsDefined(Mode)) throw new ArgumentOutOfRangeException(nameof(Mode));
         if (!Enum.IsDefined(Length)) throw new ArgumentOutOfRangeException(nameof(Length));
         if (!Enum.IsDefined(Path)) throw new ArgumentOutOfRangeException(nameof(Path));
