@@ -4,6 +4,7 @@ using HairSim.Cli;
 var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
 {
     ["run"] = (RunCommand.Help, RunCommand.Execute),
+    ["bench"] = (BenchCommand.Help, BenchCommand.Execute),
 };
 
 if (args.Length == 0 || args[0] is "-h" or "--help" or "help")

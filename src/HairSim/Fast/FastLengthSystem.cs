@@ -6,17 +6,23 @@ namespace HairSim.Fast;
 /// <summary>
 /// Fast <see cref="LengthSystem"/> in float. Follow-the-leader is a chain along each strand (particle k needs
 /// particle k−1 already corrected), so it cannot be vectorised along the strand; it is vectorised across
-/// strands instead: Width strands are transposed into a small per-thread tile (row k = particle k of each
-/// strand), swept root to tip together, and written back. PBD runs the same way with its Gauss–Seidel sweeps.
-/// Lanes past a strand's live count, and padding lanes of the last group, are masked out (InvMass 0).
+/// strands instead: 2 × Width strands are transposed into a small per-thread tile (row k = particle k of each
+/// strand, as two SIMD vectors), swept root to tip together, and written back. Two independent vectors per row
+/// let the CPU overlap two dependency chains (sqrt and divide latency). PBD runs the same way with its
+/// Gauss–Seidel sweeps. Lanes past a strand's live count, and padding lanes of the last group, are masked out
+/// (InvMass 0).
 /// </summary>
 public sealed class FastLengthSystem : IHairSystem
 {
     public string Name => LengthSystem.SystemName;
     public SystemPhase Phase => SystemPhase.Substep;
 
-    // Tile fields, each maxCapacity rows × Width lanes.
+    // Tile fields, each maxCapacity rows × Lanes.
     private const int TX = 0, TY = 1, TZ = 2, TVx = 3, TVy = 4, TVz = 5, TM = 6, TL = 7, TOx = 8, TOy = 9, TOz = 10, FieldCount = 11;
+
+    /// <summary>SIMD vectors per tile row.</summary>
+    private const int Halves = 2;
+    private static int Lanes => Halves * Vector<float>.Count;
 
     private readonly int _maxCapacity;
 
@@ -27,107 +33,189 @@ public sealed class FastLengthSystem : IHairSystem
         var st = ctx.Settings;
         if (st.Length == LengthMode.None) return;
         var w = scene.World;
-        int width = Vector<float>.Count;
+        int lanes = Lanes, width = Vector<float>.Count;
         // The tile is a StrandScratch whose "capacity" is rows × lanes.
-        var scratch = StrandScratch.For(_maxCapacity * width, FieldCount);
+        var scratch = StrandScratch.For(_maxCapacity * lanes, FieldCount);
         var head = new PoseLanes(ctx.HeadAt(substep));
-        Span<int> firsts = stackalloc int[width];
-        Span<int> counts = stackalloc int[width];
-        for (int s0 = begin; s0 < end; s0 += width)
+        Span<int> firsts = stackalloc int[lanes];
+        Span<int> counts = stackalloc int[lanes];
+        for (int s0 = begin; s0 < end; s0 += lanes)
         {
-            int lanes = Math.Min(width, end - s0);
+            int used = Math.Min(lanes, end - s0);
             int rows = 0;
-            for (int l = 0; l < width; l++)
+            bool uniform = used == lanes && Transpose.Available;
+            for (int l = 0; l < lanes; l++)
             {
-                firsts[l] = l < lanes ? w.StrandFirst[s0 + l] : 0;
-                counts[l] = l < lanes ? w.StrandParticleCount[s0 + l] : 0;
+                firsts[l] = l < used ? w.StrandFirst[s0 + l] : 0;
+                counts[l] = l < used ? w.StrandParticleCount[s0 + l] : 0;
                 rows = Math.Max(rows, counts[l]);
+                if (l < used) uniform &= counts[l] == w.StrandCapacity[s0 + l];
             }
-            Gather(w, scratch, firsts, counts, rows);
-            if (st.Length == LengthMode.FollowTheLeader) FollowTheLeader(w, scratch, firsts, counts, rows, ctx.H, st.LengthDamping, in head);
+            // Uniform: whole strands of one capacity (a multiple of 8), back to back.
+            uniform &= rows % 8 == 0 && counts[0] == rows;
+            for (int l = 1; uniform && l < lanes; l++) uniform = counts[l] == rows && firsts[l] == firsts[0] + l * rows;
+            Gather(w, scratch, firsts, counts, rows, uniform);
+            if (st.Length == LengthMode.FollowTheLeader) FollowTheLeader(w, scratch, firsts, rows, ctx.H, st.LengthDamping, in head);
             else Pbd(scratch, rows, ctx.H, st.LengthIterations);
-            Scatter(w, scratch, firsts, counts);
+            Scatter(w, scratch, firsts, counts, rows, uniform);
         }
     }
 
-    private static void Gather(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows)
+    /// <summary>
+    /// Fills the tile from the world. Uniform groups (Width whole strands of equal capacity, a multiple of 8,
+    /// laid out back to back, as every uncut groom is) use 8 × 8 SIMD transposes; anything else is copied
+    /// element by element.
+    /// </summary>
+    private static void Gather(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
     {
-        int width = Vector<float>.Count;
+        int width = Lanes;
         float[] d = t.Data;
+        if (uniform)
+        {
+            int first = firsts[0];
+            TransposeIn(w.PosX, first, rows, t, TX); TransposeIn(w.PosY, first, rows, t, TY); TransposeIn(w.PosZ, first, rows, t, TZ);
+            TransposeIn(w.VelX, first, rows, t, TVx); TransposeIn(w.VelY, first, rows, t, TVy); TransposeIn(w.VelZ, first, rows, t, TVz);
+            TransposeIn(w.InvMass, first, rows, t, TM); TransposeIn(w.RestLength, first, rows, t, TL);
+            return;
+        }
         int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
             om = t.Offset(TM), ol = t.Offset(TL);
         // Masked lanes: InvMass 0 (never moved) at a finite position; their results are never written back.
         d.AsSpan(om, rows * width).Clear();
         d.AsSpan(ox, rows * width).Clear(); d.AsSpan(oy, rows * width).Clear(); d.AsSpan(oz, rows * width).Clear();
         d.AsSpan(ol, rows * width).Clear();
+        ref float dd = ref d[0];
+        ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
+        ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
+        ref float m = ref Simd.At(w.InvMass, 0), l0 = ref Simd.At(w.RestLength, 0);
         for (int l = 0; l < width; l++)
         {
             int first = firsts[l], n = counts[l];
             for (int k = 0; k < n; k++)
             {
                 int i = first + k, r = k * width + l;
-                d[ox + r] = w.PosX[i]; d[oy + r] = w.PosY[i]; d[oz + r] = w.PosZ[i];
-                d[ovx + r] = w.VelX[i]; d[ovy + r] = w.VelY[i]; d[ovz + r] = w.VelZ[i];
-                d[om + r] = w.InvMass[i]; d[ol + r] = w.RestLength[i];
+                Unsafe.Add(ref dd, ox + r) = Unsafe.Add(ref px, i); Unsafe.Add(ref dd, oy + r) = Unsafe.Add(ref py, i); Unsafe.Add(ref dd, oz + r) = Unsafe.Add(ref pz, i);
+                Unsafe.Add(ref dd, ovx + r) = Unsafe.Add(ref vx, i); Unsafe.Add(ref dd, ovy + r) = Unsafe.Add(ref vy, i); Unsafe.Add(ref dd, ovz + r) = Unsafe.Add(ref vz, i);
+                Unsafe.Add(ref dd, om + r) = Unsafe.Add(ref m, i); Unsafe.Add(ref dd, ol + r) = Unsafe.Add(ref l0, i);
             }
         }
     }
 
-    private static void Scatter(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts)
+    private static void Scatter(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
     {
-        int width = Vector<float>.Count;
-        float[] d = t.Data;
+        int width = Lanes;
+        if (uniform)
+        {
+            int first = firsts[0];
+            TransposeOut(t, TX, w.PosX, first, rows); TransposeOut(t, TY, w.PosY, first, rows); TransposeOut(t, TZ, w.PosZ, first, rows);
+            TransposeOut(t, TVx, w.VelX, first, rows); TransposeOut(t, TVy, w.VelY, first, rows); TransposeOut(t, TVz, w.VelZ, first, rows);
+            return;
+        }
+        ref float dd = ref t.Data[0];
         int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz);
+        ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
+        ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
         for (int l = 0; l < width; l++)
         {
             int first = firsts[l], n = counts[l];
             for (int k = 0; k < n; k++)
             {
                 int i = first + k, r = k * width + l;
-                w.PosX[i] = d[ox + r]; w.PosY[i] = d[oy + r]; w.PosZ[i] = d[oz + r];
-                w.VelX[i] = d[ovx + r]; w.VelY[i] = d[ovy + r]; w.VelZ[i] = d[ovz + r];
+                Unsafe.Add(ref px, i) = Unsafe.Add(ref dd, ox + r); Unsafe.Add(ref py, i) = Unsafe.Add(ref dd, oy + r); Unsafe.Add(ref pz, i) = Unsafe.Add(ref dd, oz + r);
+                Unsafe.Add(ref vx, i) = Unsafe.Add(ref dd, ovx + r); Unsafe.Add(ref vy, i) = Unsafe.Add(ref dd, ovy + r); Unsafe.Add(ref vz, i) = Unsafe.Add(ref dd, ovz + r);
             }
         }
     }
 
-    private static void FollowTheLeader(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows,
-                                        float h, float damping, in PoseLanes head)
+    /// <summary>Strand l's particles (rows of length <paramref name="rows"/> from <paramref name="first"/>) into tile column l, 8 strands at a time.</summary>
+    private static void TransposeIn(float[] src, int first, int rows, StrandScratch t, int field)
+    {
+        int lanes = Lanes;
+        ref float d = ref t.Data[t.Offset(field)];
+        for (int g = 0; g < lanes; g += 8)
+        {
+            ref float s = ref Simd.At(src, first + g * rows);
+            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c), rows, ref Unsafe.Add(ref d, c * lanes + g), lanes);
+        }
+    }
+
+    private static void TransposeOut(StrandScratch t, int field, float[] dst, int first, int rows)
+    {
+        int lanes = Lanes;
+        ref float s = ref t.Data[t.Offset(field)];
+        for (int g = 0; g < lanes; g += 8)
+        {
+            ref float d = ref Simd.At(dst, first + g * rows);
+            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows);
+        }
+    }
+
+    /// <summary>Sweep state of one SIMD vector of strands: the corrected previous particle and its correction.</summary>
+    private struct Chain
+    {
+        public Vector<float> Px, Py, Pz, Dx, Dy, Dz;
+        public Vector<int> Free;
+    }
+
+    private readonly struct FtlParams
+    {
+        public readonly Vector<float> InvH, Damp, Eps;
+        public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Lanes;
+
+        public FtlParams(StrandScratch t, float h, float damping)
+        {
+            InvH = new(1f / h); Damp = new(damping); Eps = new(1e-12f);
+            Ox = t.Offset(TX); Oy = t.Offset(TY); Oz = t.Offset(TZ); Ovx = t.Offset(TVx); Ovy = t.Offset(TVy); Ovz = t.Offset(TVz);
+            Om = t.Offset(TM); Ol = t.Offset(TL); Lanes = FastLengthSystem.Lanes;
+        }
+    }
+
+    private static void FollowTheLeader(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, int rows, float h, float damping, in PoseLanes head)
     {
         int width = Vector<float>.Count;
         ref float d = ref t.Data[0];
-        int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
-            om = t.Offset(TM), ol = t.Offset(TL);
-        var invH = new Vector<float>(1f / h);
-        var damp = new Vector<float>(damping);
-        var eps = new Vector<float>(1e-12f);
-        var px = Simd.Ld(ref d, ox); var py = Simd.Ld(ref d, oy); var pz = Simd.Ld(ref d, oz);
-        Vector<float> dxPrev = default, dyPrev = default, dzPrev = default;
-        Vector<int> freePrev = default;
+        var p = new FtlParams(t, h, damping);
+        var a = new Chain { Px = Simd.Ld(ref d, p.Ox), Py = Simd.Ld(ref d, p.Oy), Pz = Simd.Ld(ref d, p.Oz) };
+        var b = new Chain { Px = Simd.Ld(ref d, p.Ox + width), Py = Simd.Ld(ref d, p.Oy + width), Pz = Simd.Ld(ref d, p.Oz + width) };
         for (int k = 1; k < rows; k++)
         {
-            int r = k * width;
-            var x = Simd.Ld(ref d, ox + r); var y = Simd.Ld(ref d, oy + r); var z = Simd.Ld(ref d, oz + r);
-            var free = ~Vector.Equals(Simd.Ld(ref d, om + r), Vector<float>.Zero);
-            var ex = x - px; var ey = y - py; var ez = z - pz;
-            var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
-            var degenerate = free & Vector.LessThan(len, eps);
-            if (!Vector.EqualsAll(degenerate, Vector<int>.Zero))
-                RestAxis(w, firsts, k, degenerate, in head, ref ex, ref ey, ref ez, ref len);
-            var ratio = Simd.Ld(ref d, ol + r) / Simd.Sel(free, len, Vector<float>.One);
-            // Correction d = leader + e·ratio − x. With e = x − leader that is e·(ratio − 1), which keeps float
-            // rounding at segment scale (the reference computes it in double); a fallback axis uses the long form.
-            var corr = ratio - Vector<float>.One;
-            var dx = Simd.Sel(free, Simd.Sel(degenerate, (px - x) + ex * ratio, ex * corr), Vector<float>.Zero);
-            var dy = Simd.Sel(free, Simd.Sel(degenerate, (py - y) + ey * ratio, ey * corr), Vector<float>.Zero);
-            var dz = Simd.Sel(free, Simd.Sel(degenerate, (pz - z) + ez * ratio, ez * corr), Vector<float>.Zero);
-            var tx = x + dx; var ty = y + dy; var tz = z + dz;
-            Simd.St(ref d, ox + r, tx); Simd.St(ref d, oy + r, ty); Simd.St(ref d, oz + r, tz);
-            // Velocity of particle k−1 now that its successor's correction is known: v += (d[k−1] − s·d[k]) / h.
-            if (k >= 2) Kick(ref d, (k - 1) * width, ovx, ovy, ovz, freePrev, dxPrev - damp * dx, dyPrev - damp * dy, dzPrev - damp * dz, invH);
-            px = tx; py = ty; pz = tz;
-            dxPrev = dx; dyPrev = dy; dzPrev = dz; freePrev = free;
+            // Two independent chains per row: their sqrt/divide latencies overlap.
+            Step(w, ref d, in p, ref a, firsts, k, 0, in head);
+            Step(w, ref d, in p, ref b, firsts, k, width, in head);
         }
-        if (rows >= 2) Kick(ref d, (rows - 1) * width, ovx, ovy, ovz, freePrev, dxPrev, dyPrev, dzPrev, invH);
+        if (rows >= 2)
+        {
+            int r = (rows - 1) * p.Lanes;
+            Kick(ref d, r, p.Ovx, p.Ovy, p.Ovz, a.Free, a.Dx, a.Dy, a.Dz, p.InvH);
+            Kick(ref d, r + width, p.Ovx, p.Ovy, p.Ovz, b.Free, b.Dx, b.Dy, b.Dz, p.InvH);
+        }
+    }
+
+    /// <summary>Row k of one vector of strands: put particle k at its rest distance from k−1, then kick k−1's velocity.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Step(HairWorld w, ref float d, in FtlParams p, ref Chain c, ReadOnlySpan<int> firsts, int k, int half, in PoseLanes head)
+    {
+        int r = k * p.Lanes + half;
+        var x = Simd.Ld(ref d, p.Ox + r); var y = Simd.Ld(ref d, p.Oy + r); var z = Simd.Ld(ref d, p.Oz + r);
+        var free = ~Vector.Equals(Simd.Ld(ref d, p.Om + r), Vector<float>.Zero);
+        var ex = x - c.Px; var ey = y - c.Py; var ez = z - c.Pz;
+        var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
+        var degenerate = free & Vector.LessThan(len, p.Eps);
+        if (!Vector.EqualsAll(degenerate, Vector<int>.Zero))
+            RestAxis(w, firsts.Slice(half), k, degenerate, in head, ref ex, ref ey, ref ez, ref len);
+        var ratio = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One);
+        // Correction d = leader + e·ratio − x. With e = x − leader that is e·(ratio − 1), which keeps float
+        // rounding at segment scale (the reference computes it in double); a fallback axis uses the long form.
+        var corr = ratio - Vector<float>.One;
+        var dx = Simd.Sel(free, Simd.Sel(degenerate, (c.Px - x) + ex * ratio, ex * corr), Vector<float>.Zero);
+        var dy = Simd.Sel(free, Simd.Sel(degenerate, (c.Py - y) + ey * ratio, ey * corr), Vector<float>.Zero);
+        var dz = Simd.Sel(free, Simd.Sel(degenerate, (c.Pz - z) + ez * ratio, ez * corr), Vector<float>.Zero);
+        var tx = x + dx; var ty = y + dy; var tz = z + dz;
+        Simd.St(ref d, p.Ox + r, tx); Simd.St(ref d, p.Oy + r, ty); Simd.St(ref d, p.Oz + r, tz);
+        // Velocity of particle k−1 now that its successor's correction is known: v += (d[k−1] − s·d[k]) / h.
+        if (k >= 2) Kick(ref d, r - p.Lanes, p.Ovx, p.Ovy, p.Ovz, c.Free, c.Dx - p.Damp * dx, c.Dy - p.Damp * dy, c.Dz - p.Damp * dz, p.InvH);
+        c.Px = tx; c.Py = ty; c.Pz = tz;
+        c.Dx = dx; c.Dy = dy; c.Dz = dz; c.Free = free;
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -161,11 +249,11 @@ public sealed class FastLengthSystem : IHairSystem
 
     private static void Pbd(StrandScratch t, int rows, float h, int iterations)
     {
-        int width = Vector<float>.Count;
+        int width = Vector<float>.Count, lanes = Lanes;
         ref float d = ref t.Data[0];
         int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
             om = t.Offset(TM), ol = t.Offset(TL), oox = t.Offset(TOx), ooy = t.Offset(TOy), ooz = t.Offset(TOz);
-        int cells = rows * width;
+        int cells = rows * lanes;
         t.Data.AsSpan(ox, cells).CopyTo(t.Data.AsSpan(oox, cells));
         t.Data.AsSpan(oy, cells).CopyTo(t.Data.AsSpan(ooy, cells));
         t.Data.AsSpan(oz, cells).CopyTo(t.Data.AsSpan(ooz, cells));
@@ -174,19 +262,22 @@ public sealed class FastLengthSystem : IHairSystem
         {
             for (int k = 1; k < rows; k++)
             {
-                int a = (k - 1) * width, b = k * width;
-                var wa = Simd.Ld(ref d, om + a); var wb = Simd.Ld(ref d, om + b);
-                var wsum = wa + wb;
-                var ax = Simd.Ld(ref d, ox + a); var ay = Simd.Ld(ref d, oy + a); var az = Simd.Ld(ref d, oz + a);
-                var bx = Simd.Ld(ref d, ox + b); var by = Simd.Ld(ref d, oy + b); var bz = Simd.Ld(ref d, oz + b);
-                var ex = bx - ax; var ey = by - ay; var ez = bz - az;
-                var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
-                var act = ~Vector.Equals(wsum, Vector<float>.Zero) & Vector.GreaterThanOrEqual(len, eps);
-                if (Vector.EqualsAll(act, Vector<int>.Zero)) continue;
-                var c = Simd.Sel(act, (len - Simd.Ld(ref d, ol + b)) / Simd.Sel(act, len * wsum, Vector<float>.One), Vector<float>.Zero);
-                var ca = wa * c; var cb = wb * c;
-                Simd.St(ref d, ox + a, ax + ca * ex); Simd.St(ref d, oy + a, ay + ca * ey); Simd.St(ref d, oz + a, az + ca * ez);
-                Simd.St(ref d, ox + b, bx - cb * ex); Simd.St(ref d, oy + b, by - cb * ey); Simd.St(ref d, oz + b, bz - cb * ez);
+                for (int half = 0; half < lanes; half += width)
+                {
+                    int a = (k - 1) * lanes + half, b = k * lanes + half;
+                    var wa = Simd.Ld(ref d, om + a); var wb = Simd.Ld(ref d, om + b);
+                    var wsum = wa + wb;
+                    var ax = Simd.Ld(ref d, ox + a); var ay = Simd.Ld(ref d, oy + a); var az = Simd.Ld(ref d, oz + a);
+                    var bx = Simd.Ld(ref d, ox + b); var by = Simd.Ld(ref d, oy + b); var bz = Simd.Ld(ref d, oz + b);
+                    var ex = bx - ax; var ey = by - ay; var ez = bz - az;
+                    var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
+                    var act = ~Vector.Equals(wsum, Vector<float>.Zero) & Vector.GreaterThanOrEqual(len, eps);
+                    if (Vector.EqualsAll(act, Vector<int>.Zero)) continue;
+                    var c = Simd.Sel(act, (len - Simd.Ld(ref d, ol + b)) / Simd.Sel(act, len * wsum, Vector<float>.One), Vector<float>.Zero);
+                    var ca = wa * c; var cb = wb * c;
+                    Simd.St(ref d, ox + a, ax + ca * ex); Simd.St(ref d, oy + a, ay + ca * ey); Simd.St(ref d, oz + a, az + ca * ez);
+                    Simd.St(ref d, ox + b, bx - cb * ex); Simd.St(ref d, oy + b, by - cb * ey); Simd.St(ref d, oz + b, bz - cb * ez);
+                }
             }
         }
         var invH = new Vector<float>(1f / h);
