@@ -32,7 +32,8 @@ public sealed class FastShapeMatchSystem : IHairSystem
 
     private readonly struct Params
     {
-        public readonly Vector<float> F, BetaOverH, Third, LenEps;
+        public readonly Vector<float> F, FHalf, FThird, BetaOverH, Third, LenEps;
+        public readonly Vector<int> Two, Three;
         public readonly float Alpha, Beta;
         public readonly PoseLanes Head;
         public readonly Quaternion HeadRotation;
@@ -40,7 +41,9 @@ public sealed class FastShapeMatchSystem : IHairSystem
         public Params(float h, float alpha, float beta, bool literal, in RigidTransform head)
         {
             Alpha = alpha; Beta = beta;
-            F = new(literal ? h * alpha : alpha / h);
+            float f = literal ? h * alpha : alpha / h;
+            F = new(f); FHalf = new(f / 2f); FThird = new(f / 3f);
+            Two = new(2); Three = new(3);
             BetaOverH = new(beta / h);
             Third = new(1f / 3f);
             LenEps = new(1e-12f);
@@ -145,6 +148,14 @@ public sealed class FastShapeMatchSystem : IHairSystem
     /// <summary>Does any triple of the strand (1 … n − 2) have a bent rest shape?</summary>
     private static bool HasBend(ref float bend, int n)
     {
+        int width = Vector<float>.Count;
+        if (n >= width + 2)
+        {
+            int k = 1;
+            for (; k + width - 1 <= n - 2; k += width)
+                if (!Vector.EqualsAll(Simd.Ld(ref bend, k), Vector<float>.Zero)) return true;
+            return k <= n - 2 && !Vector.EqualsAll(Simd.Ld(ref bend, n - 1 - width), Vector<float>.Zero);
+        }
         for (int k = 1; k <= n - 2; k++)
             if (Unsafe.Add(ref bend, k) != 0f) return true;
         return false;
@@ -282,7 +293,6 @@ public sealed class FastShapeMatchSystem : IHairSystem
     /// <summary>Velocity change of particles j0 … j0 + Width − 1 (lanes below <paramref name="fresh"/> are left alone).</summary>
     private static void Particles(ref StrandView v, int j0, int fresh, int n, in Params p, StrandScratch scratch, ref float g)
     {
-        var x = Simd.Ld(ref v.Px, j0); var y = Simd.Ld(ref v.Py, j0); var z = Simd.Ld(ref v.Pz, j0);
         var dvx = Vector<float>.Zero; var dvy = Vector<float>.Zero; var dvz = Vector<float>.Zero;
         if (p.Alpha > 0f && n >= 3)
         {
@@ -293,14 +303,16 @@ public sealed class FastShapeMatchSystem : IHairSystem
             var sx = Simd.Sel(fromNext, Simd.Ld(ref g, o + 1 + GPx * st), default) + Simd.Sel(fromSelf, Simd.Ld(ref g, o + GMx * st), default) + Simd.Sel(fromPrev, Simd.Ld(ref g, o - 1 + GNx * st), default);
             var sy = Simd.Sel(fromNext, Simd.Ld(ref g, o + 1 + GPy * st), default) + Simd.Sel(fromSelf, Simd.Ld(ref g, o + GMy * st), default) + Simd.Sel(fromPrev, Simd.Ld(ref g, o - 1 + GNy * st), default);
             var sz = Simd.Sel(fromNext, Simd.Ld(ref g, o + 1 + GPz * st), default) + Simd.Sel(fromSelf, Simd.Ld(ref g, o + GMz * st), default) + Simd.Sel(fromPrev, Simd.Ld(ref g, o - 1 + GNz * st), default);
-            var count = Vector.ConvertToSingle(-(fromNext + fromSelf + fromPrev));
-            var has = Vector.GreaterThan(count, Vector<float>.Zero);
-            // Goals are already relative to the particle: the mean offset is the pull.
-            var f = Simd.Sel(has, p.F / Simd.Sel(has, count, Vector<float>.One), Vector<float>.Zero);
+            // Goals are already relative to the particle: the mean offset (sum / count, count 0 … 3) is the pull.
+            var count = -(fromNext + fromSelf + fromPrev);
+            var f = Simd.Sel(Vector.Equals(count, p.Three), p.FThird,
+                    Simd.Sel(Vector.Equals(count, p.Two), p.FHalf,
+                    Simd.Sel(Vector.Equals(count, Vector<int>.One), p.F, Vector<float>.Zero)));
             dvx = f * sx; dvy = f * sy; dvz = f * sz;
         }
         if (p.Beta > 0f)
         {
+            var x = Simd.Ld(ref v.Px, j0); var y = Simd.Ld(ref v.Py, j0); var z = Simd.Ld(ref v.Pz, j0);
             p.Head.Point(Simd.Ld(ref v.Rx, j0), Simd.Ld(ref v.Ry, j0), Simd.Ld(ref v.Rz, j0), out var gx, out var gy, out var gz);
             dvx += p.BetaOverH * (gx - x); dvy += p.BetaOverH * (gy - y); dvz += p.BetaOverH * (gz - z);
         }

@@ -101,7 +101,7 @@ public sealed class ParallelDispatcher : IDisposableDispatcher
         lock (_runLock)
         {
             _disposed = true;
-            _start.Release(_workers.Length);
+            if (_workers.Length > 0) _start.Release(_workers.Length);
             foreach (var t in _workers) t.Join();
         }
         _start.Dispose();
