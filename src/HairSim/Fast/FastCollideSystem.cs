@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 
 namespace HairSim.Fast;
@@ -33,6 +34,7 @@ public sealed class FastCollideSystem : IHairSystem
     }
 
     /// <summary>Velocity response shared by all kinds: drop the inward normal part, keep ContactSlide of the rest.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Respond(Vector<int> hit, Vector<float> nx, Vector<float> ny, Vector<float> nz, Vector<float> slide,
                                 ref float vx, ref float vy, ref float vz)
     {
@@ -61,6 +63,7 @@ public sealed class FastCollideSystem : IHairSystem
             _slide = new(slide);
         }
 
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public void Chunk(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
                           ref float invMass, ref float rx, ref float ry, ref float rz)
         {
@@ -107,6 +110,7 @@ public sealed class FastCollideSystem : IHairSystem
             _fx = new(fallback.X); _fy = new(fallback.Y); _fz = new(fallback.Z);
         }
 
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public void Chunk(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
                           ref float invMass, ref float rx, ref float ry, ref float rz)
         {

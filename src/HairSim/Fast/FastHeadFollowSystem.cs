@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 
 namespace HairSim.Fast;
@@ -46,6 +47,7 @@ public sealed class FastHeadFollowSystem : IHairSystem
         private readonly PoseLanes _head;
         public PinKernel(PoseLanes head) => _head = head;
 
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public void Chunk(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
                           ref float invMass, ref float rx, ref float ry, ref float rz)
         {

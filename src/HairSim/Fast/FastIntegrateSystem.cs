@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 
 namespace HairSim.Fast;
@@ -27,6 +28,7 @@ public sealed class FastIntegrateSystem : IHairSystem
             _keep = new(keep); _maxSpeed = new(maxSpeed); _limit = maxSpeed > 0f;
         }
 
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public void Chunk(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
                           ref float invMass, ref float rx, ref float ry, ref float rz)
         {

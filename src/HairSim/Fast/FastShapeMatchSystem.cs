@@ -235,6 +235,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
     /// segment (~1e-9 m) instead of the scale of world coordinates (~3e-8 m at 0.3 m): the reference computes
     /// in double, and a particle moves exactly onto its goal, so absolute-coordinate rounding would pile up.
     /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Triples(ref StrandView v, int k0, int n, bool bent, in Params p, StrandScratch scratch, ref float g)
     {
         var valid = ValidTriple(k0, n);
@@ -249,15 +250,32 @@ public sealed class FastShapeMatchSystem : IHairSystem
         var inv = Vector<float>.One / Simd.Sel(ok, len, Vector<float>.One);
         ex *= inv; ey *= inv; ez *= inv;
         var degenerate = valid & ~ok;
-        var bend = Simd.Ld(ref v.Sb, k0);
         int o = scratch.Offset(0) + k0, st = scratch.Stride;
-        Vector<float> nx = default, ny = default, nz = default;
-        if (bent)
-        {
-            nx = Simd.Ld(ref g, o + BNx * st); ny = Simd.Ld(ref g, o + BNy * st); nz = Simd.Ld(ref g, o + BNz * st);
-        }
         var pa = Simd.Ld(ref v.Sp, k0); var pm = Simd.Ld(ref v.Sm, k0); var pn = Simd.Ld(ref v.Sn, k0);
-        var hb = bend * new Vector<float>(0.5f);
+        if (!bent)
+        {
+            // Straight rest shape (the source's model): goals lie on the axis.
+            Simd.St(ref g, o + GPx * st, (ox - ax) + pa * ex); Simd.St(ref g, o + GPy * st, (oy - ay) + pa * ey); Simd.St(ref g, o + GPz * st, (oz - az) + pa * ez);
+            Simd.St(ref g, o + GMx * st, ox + pm * ex); Simd.St(ref g, o + GMy * st, oy + pm * ey); Simd.St(ref g, o + GMz * st, oz + pm * ez);
+            Simd.St(ref g, o + GNx * st, (ox - cx) + pn * ex); Simd.St(ref g, o + GNy * st, (oy - cy) + pn * ey); Simd.St(ref g, o + GNz * st, (oz - cz) + pn * ez);
+        }
+        else
+        {
+            var bend = Simd.Ld(ref v.Sb, k0);
+            var nx = Simd.Ld(ref g, o + BNx * st); var ny = Simd.Ld(ref g, o + BNy * st); var nz = Simd.Ld(ref g, o + BNz * st);
+            var hb = bend * new Vector<float>(0.5f);
+            BentGoals(ref g, o, st, ox, oy, oz, ax, ay, az, cx, cy, cz, ex, ey, ez, pa, pm, pn, bend, hb, nx, ny, nz);
+        }
+        if (Vector.EqualsAll(degenerate, Vector<int>.Zero)) return;
+        for (int l = 0; l < Vector<float>.Count; l++)
+            if (degenerate[l] != 0) ScalarTriple(ref v, k0 + l, bent, in p, scratch, ref g);
+    }
+
+    private static void BentGoals(ref float g, int o, int st, Vector<float> ox, Vector<float> oy, Vector<float> oz,
+        Vector<float> ax, Vector<float> ay, Vector<float> az, Vector<float> cx, Vector<float> cy, Vector<float> cz,
+        Vector<float> ex, Vector<float> ey, Vector<float> ez, Vector<float> pa, Vector<float> pm, Vector<float> pn,
+        Vector<float> bend, Vector<float> hb, Vector<float> nx, Vector<float> ny, Vector<float> nz)
+    {
         Simd.St(ref g, o + GPx * st, (ox - ax) + pa * ex - hb * nx);
         Simd.St(ref g, o + GPy * st, (oy - ay) + pa * ey - hb * ny);
         Simd.St(ref g, o + GPz * st, (oz - az) + pa * ez - hb * nz);
@@ -267,9 +285,6 @@ public sealed class FastShapeMatchSystem : IHairSystem
         Simd.St(ref g, o + GNx * st, (ox - cx) + pn * ex - hb * nx);
         Simd.St(ref g, o + GNy * st, (oy - cy) + pn * ey - hb * ny);
         Simd.St(ref g, o + GNz * st, (oz - cz) + pn * ez - hb * nz);
-        if (Vector.EqualsAll(degenerate, Vector<int>.Zero)) return;
-        for (int l = 0; l < Vector<float>.Count; l++)
-            if (degenerate[l] != 0) ScalarTriple(ref v, k0 + l, bent, in p, scratch, ref g);
     }
 
     /// <summary>One triple whose ends coincide: the axis falls back to the rest axis carried by the head, as in the reference.</summary>
@@ -291,6 +306,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
     }
 
     /// <summary>Velocity change of particles j0 … j0 + Width − 1 (lanes below <paramref name="fresh"/> are left alone).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Particles(ref StrandView v, int j0, int fresh, int n, in Params p, StrandScratch scratch, ref float g)
     {
         var dvx = Vector<float>.Zero; var dvy = Vector<float>.Zero; var dvz = Vector<float>.Zero;

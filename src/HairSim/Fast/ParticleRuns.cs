@@ -43,10 +43,13 @@ internal static class ParticleRuns
     {
         int width = Vector<float>.Count;
         int i = start;
+        ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
+        ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
+        ref float m = ref Simd.At(w.InvMass, 0), rx = ref Simd.At(w.RestX, 0), ry = ref Simd.At(w.RestY, 0), rz = ref Simd.At(w.RestZ, 0);
         for (; i <= stop - width; i += width)
-            kernel.Chunk(ref Simd.At(w.PosX, i), ref Simd.At(w.PosY, i), ref Simd.At(w.PosZ, i),
-                ref Simd.At(w.VelX, i), ref Simd.At(w.VelY, i), ref Simd.At(w.VelZ, i),
-                ref Simd.At(w.InvMass, i), ref Simd.At(w.RestX, i), ref Simd.At(w.RestY, i), ref Simd.At(w.RestZ, i));
+            kernel.Chunk(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
+                ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
+                ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
         int r = stop - i;
         if (r <= 0) return;
         tail.Clear();
