@@ -175,19 +175,19 @@ public sealed class FastLengthSystem : IHairSystem
         int width = Vector<float>.Count;
         ref float d = ref t.Data[0];
         var p = new FtlParams(t, h, damping);
-        var a = new Chain { Px = Simd.Ld(ref d, p.Ox), Py = Simd.Ld(ref d, p.Oy), Pz = Simd.Ld(ref d, p.Oz) };
-        var b = new Chain { Px = Simd.Ld(ref d, p.Ox + width), Py = Simd.Ld(ref d, p.Oy + width), Pz = Simd.Ld(ref d, p.Oz + width) };
+        Span<Chain> chains = stackalloc Chain[Halves];
+        for (int c = 0; c < Halves; c++)
+            chains[c] = new Chain { Px = Simd.Ld(ref d, p.Ox + c * width), Py = Simd.Ld(ref d, p.Oy + c * width), Pz = Simd.Ld(ref d, p.Oz + c * width) };
         for (int k = 1; k < rows; k++)
         {
-            // Two independent chains per row: their sqrt/divide latencies overlap.
-            Step(w, ref d, in p, ref a, firsts, k, 0, in head);
-            Step(w, ref d, in p, ref b, firsts, k, width, in head);
+            // Independent chains per row: their sqrt/divide latencies overlap.
+            for (int c = 0; c < Halves; c++) Step(w, ref d, in p, ref chains[c], firsts, k, c * width, in head);
         }
         if (rows >= 2)
         {
             int r = (rows - 1) * p.Lanes;
-            Kick(ref d, r, p.Ovx, p.Ovy, p.Ovz, a.Free, a.Dx, a.Dy, a.Dz, p.InvH);
-            Kick(ref d, r + width, p.Ovx, p.Ovy, p.Ovz, b.Free, b.Dx, b.Dy, b.Dz, p.InvH);
+            for (int c = 0; c < Halves; c++)
+                Kick(ref d, r + c * width, p.Ovx, p.Ovy, p.Ovz, chains[c].Free, chains[c].Dx, chains[c].Dy, chains[c].Dz, p.InvH);
         }
     }
 
@@ -201,15 +201,26 @@ public sealed class FastLengthSystem : IHairSystem
         var ex = x - c.Px; var ey = y - c.Py; var ez = z - c.Pz;
         var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
         var degenerate = free & Vector.LessThan(len, p.Eps);
-        if (!Vector.EqualsAll(degenerate, Vector<int>.Zero))
+        Vector<float> dx, dy, dz;
+        if (Vector.EqualsAll(degenerate, Vector<int>.Zero))
+        {
+            // Correction d = leader + e·ratio − x. With e = x − leader that is e·(ratio − 1), which keeps float
+            // rounding at segment scale (the reference computes it in double).
+            var corr = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One) - Vector<float>.One;
+            corr = Simd.Sel(free, corr, Vector<float>.Zero);
+            dx = ex * corr; dy = ey * corr; dz = ez * corr;
+        }
+        else
+        {
+            // Coincident neighbours: the edge takes the reference's fallback axis; d = leader + axis·ratio − x.
+            var ox = ex; var oy = ey; var oz = ez;
             RestAxis(w, firsts.Slice(half), k, degenerate, in head, ref ex, ref ey, ref ez, ref len);
-        var ratio = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One);
-        // Correction d = leader + e·ratio − x. With e = x − leader that is e·(ratio − 1), which keeps float
-        // rounding at segment scale (the reference computes it in double); a fallback axis uses the long form.
-        var corr = ratio - Vector<float>.One;
-        var dx = Simd.Sel(free, Simd.Sel(degenerate, (c.Px - x) + ex * ratio, ex * corr), Vector<float>.Zero);
-        var dy = Simd.Sel(free, Simd.Sel(degenerate, (c.Py - y) + ey * ratio, ey * corr), Vector<float>.Zero);
-        var dz = Simd.Sel(free, Simd.Sel(degenerate, (c.Pz - z) + ez * ratio, ez * corr), Vector<float>.Zero);
+            var ratio = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One);
+            var corr = ratio - Vector<float>.One;
+            dx = Simd.Sel(free, Simd.Sel(degenerate, (c.Px - x) + ex * ratio, ox * corr), Vector<float>.Zero);
+            dy = Simd.Sel(free, Simd.Sel(degenerate, (c.Py - y) + ey * ratio, oy * corr), Vector<float>.Zero);
+            dz = Simd.Sel(free, Simd.Sel(degenerate, (c.Pz - z) + ez * ratio, oz * corr), Vector<float>.Zero);
+        }
         var tx = x + dx; var ty = y + dy; var tz = z + dz;
         Simd.St(ref d, p.Ox + r, tx); Simd.St(ref d, p.Oy + r, ty); Simd.St(ref d, p.Oz + r, tz);
         // Velocity of particle k−1 now that its successor's correction is known: v += (d[k−1] − s·d[k]) / h.
