@@ -13,7 +13,9 @@ public sealed class ParallelDispatcher : IDisposableDispatcher
 {
     private readonly Thread[] _workers;
     private readonly SemaphoreSlim _start = new(0);
-    private readonly ManualResetEventSlim _done = new(false);
+    // The caller waits for the workers on this monitor (allocated once; ManualResetEventSlim would allocate its
+    // lock object the first time it has to block, i.e. inside some later step).
+    private readonly object _doneGate = new();
     private readonly object _runLock = new();
     private Action<int>? _job;
     private int _jobCount;
@@ -58,11 +60,10 @@ public sealed class ParallelDispatcher : IDisposableDispatcher
             _nextJob = -1;
             _failure = null;
             int helpers = Math.Min(_workers.Length, jobCount - 1);
-            _pendingWorkers = helpers;
-            _done.Reset();
+            Volatile.Write(ref _pendingWorkers, helpers);
             _start.Release(helpers);
             Work();
-            _done.Wait();
+            WaitForWorkers();
             _job = null;
             _failure?.Throw();
         }
@@ -84,6 +85,15 @@ public sealed class ParallelDispatcher : IDisposableDispatcher
         }
     }
 
+    private void WaitForWorkers()
+    {
+        var spin = new SpinWait();
+        for (int i = 0; i < 50 && Volatile.Read(ref _pendingWorkers) != 0; i++) spin.SpinOnce(sleep1Threshold: -1);
+        if (Volatile.Read(ref _pendingWorkers) == 0) return;
+        lock (_doneGate)
+            while (Volatile.Read(ref _pendingWorkers) != 0) Monitor.Wait(_doneGate);
+    }
+
     private void WorkerLoop()
     {
         while (true)
@@ -91,7 +101,8 @@ public sealed class ParallelDispatcher : IDisposableDispatcher
             _start.Wait();
             if (_disposed) return;
             Work();
-            if (Interlocked.Decrement(ref _pendingWorkers) == 0) _done.Set();
+            if (Interlocked.Decrement(ref _pendingWorkers) == 0)
+                lock (_doneGate) Monitor.PulseAll(_doneGate);
         }
     }
 
@@ -105,6 +116,5 @@ public sealed class ParallelDispatcher : IDisposableDispatcher
             foreach (var t in _workers) t.Join();
         }
         _start.Dispose();
-        _done.Dispose();
     }
 }
