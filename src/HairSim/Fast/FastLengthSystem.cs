@@ -28,6 +28,8 @@ public sealed class FastLengthSystem : IHairSystem
 
     public FastLengthSystem(int maxStrandCapacity) => _maxCapacity = maxStrandCapacity;
 
+    // The stack scratch is fully written before it is read, or only read in lanes that are masked out.
+    [SkipLocalsInit]
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
         var st = ctx.Settings;
@@ -35,7 +37,8 @@ public sealed class FastLengthSystem : IHairSystem
         var w = scene.World;
         int lanes = Lanes, width = Vector<float>.Count;
         // The tile is a StrandScratch whose "capacity" is rows × lanes.
-        var scratch = StrandScratch.For(_maxCapacity * lanes, FieldCount);
+        int size = StrandScratch.Size(_maxCapacity * lanes, FieldCount);
+        var scratch = new StrandScratch(size <= StrandScratch.StackFloats ? stackalloc float[size] : StrandScratch.Heap(size), _maxCapacity * lanes);
         var head = new PoseLanes(ctx.HeadAt(substep));
         Span<int> firsts = stackalloc int[lanes];
         Span<int> counts = stackalloc int[lanes];
@@ -66,10 +69,10 @@ public sealed class FastLengthSystem : IHairSystem
     /// laid out back to back, as every uncut groom is) use 8 × 8 SIMD transposes; anything else is copied
     /// element by element.
     /// </summary>
-    private static void Gather(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
+    private static void Gather(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
     {
         int width = Lanes;
-        float[] d = t.Data;
+        Span<float> d = t.Data;
         if (uniform)
         {
             int first = firsts[0];
@@ -81,9 +84,9 @@ public sealed class FastLengthSystem : IHairSystem
         int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
             om = t.Offset(TM), ol = t.Offset(TL);
         // Masked lanes: InvMass 0 (never moved) at a finite position; their results are never written back.
-        d.AsSpan(om, rows * width).Clear();
-        d.AsSpan(ox, rows * width).Clear(); d.AsSpan(oy, rows * width).Clear(); d.AsSpan(oz, rows * width).Clear();
-        d.AsSpan(ol, rows * width).Clear();
+        d.Slice(om, rows * width).Clear();
+        d.Slice(ox, rows * width).Clear(); d.Slice(oy, rows * width).Clear(); d.Slice(oz, rows * width).Clear();
+        d.Slice(ol, rows * width).Clear();
         ref float dd = ref d[0];
         ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
         ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
@@ -101,7 +104,7 @@ public sealed class FastLengthSystem : IHairSystem
         }
     }
 
-    private static void Scatter(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
+    private static void Scatter(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
     {
         int width = Lanes;
         if (uniform)
@@ -128,7 +131,7 @@ public sealed class FastLengthSystem : IHairSystem
     }
 
     /// <summary>Strand l's particles (rows of length <paramref name="rows"/> from <paramref name="first"/>) into tile column l, 8 strands at a time.</summary>
-    private static void TransposeIn(float[] src, int first, int rows, StrandScratch t, int field)
+    private static void TransposeIn(float[] src, int first, int rows, scoped StrandScratch t, int field)
     {
         int lanes = Lanes;
         ref float d = ref t.Data[t.Offset(field)];
@@ -139,7 +142,7 @@ public sealed class FastLengthSystem : IHairSystem
         }
     }
 
-    private static void TransposeOut(StrandScratch t, int field, float[] dst, int first, int rows)
+    private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows)
     {
         int lanes = Lanes;
         ref float s = ref t.Data[t.Offset(field)];
@@ -162,7 +165,7 @@ public sealed class FastLengthSystem : IHairSystem
         public readonly Vector<float> InvH, Damp, Eps;
         public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Lanes;
 
-        public FtlParams(StrandScratch t, float h, float damping)
+        public FtlParams(scoped StrandScratch t, float h, float damping)
         {
             InvH = new(1f / h); Damp = new(damping); Eps = new(1e-12f);
             Ox = t.Offset(TX); Oy = t.Offset(TY); Oz = t.Offset(TZ); Ovx = t.Offset(TVx); Ovy = t.Offset(TVy); Ovz = t.Offset(TVz);
@@ -170,7 +173,7 @@ public sealed class FastLengthSystem : IHairSystem
         }
     }
 
-    private static void FollowTheLeader(HairWorld w, StrandScratch t, ReadOnlySpan<int> firsts, int rows, float h, float damping, in PoseLanes head)
+    private static void FollowTheLeader(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, int rows, float h, float damping, in PoseLanes head)
     {
         int width = Vector<float>.Count;
         ref float d = ref t.Data[0];
@@ -258,16 +261,16 @@ public sealed class FastLengthSystem : IHairSystem
         ex = new Vector<float>(buf); ey = new Vector<float>(buf.Slice(width)); ez = new Vector<float>(buf.Slice(2 * width)); len = new Vector<float>(buf.Slice(3 * width));
     }
 
-    private static void Pbd(StrandScratch t, int rows, float h, int iterations)
+    private static void Pbd(scoped StrandScratch t, int rows, float h, int iterations)
     {
         int width = Vector<float>.Count, lanes = Lanes;
         ref float d = ref t.Data[0];
         int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
             om = t.Offset(TM), ol = t.Offset(TL), oox = t.Offset(TOx), ooy = t.Offset(TOy), ooz = t.Offset(TOz);
         int cells = rows * lanes;
-        t.Data.AsSpan(ox, cells).CopyTo(t.Data.AsSpan(oox, cells));
-        t.Data.AsSpan(oy, cells).CopyTo(t.Data.AsSpan(ooy, cells));
-        t.Data.AsSpan(oz, cells).CopyTo(t.Data.AsSpan(ooz, cells));
+        t.Data.Slice(ox, cells).CopyTo(t.Data.Slice(oox, cells));
+        t.Data.Slice(oy, cells).CopyTo(t.Data.Slice(ooy, cells));
+        t.Data.Slice(oz, cells).CopyTo(t.Data.Slice(ooz, cells));
         var eps = new Vector<float>(1e-12f);
         for (int it = 0; it < iterations; it++)
         {

@@ -52,15 +52,18 @@ public sealed class FastShapeMatchSystem : IHairSystem
         }
     }
 
+    // The stack scratch is fully written before it is read, or only read in lanes that are masked out.
+    [SkipLocalsInit]
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
         var w = scene.World;
         var st = ctx.Settings;
         var p = new Params(ctx.H, st.Alpha, st.GlobalShapeStiffness, st.Mode == ShapeMatchMode.LiteralForce, ctx.HeadAt(substep));
         if (p.Alpha <= 0f && p.Beta <= 0f) return;
-        var scratch = StrandScratch.For(_maxCapacity, FieldCount);
+        int size = StrandScratch.Size(_maxCapacity, FieldCount);
+        var scratch = new StrandScratch(size <= StrandScratch.StackFloats ? stackalloc float[size] : StrandScratch.Heap(size), _maxCapacity);
         int width = Vector<float>.Count;
-        float[] d = scratch.Data;
+        Span<float> d = scratch.Data;
         for (int s = begin; s < end; s++)
         {
             int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
@@ -95,18 +98,18 @@ public sealed class FastShapeMatchSystem : IHairSystem
                     Sp = ref d[scratch.Offset(CSp)], Sm = ref d[scratch.Offset(CSm)], Sn = ref d[scratch.Offset(CSn)], Sb = ref d[scratch.Offset(CSb)],
                 };
                 Strand(ref v, w, first, n, padded: true, in p, scratch);
-                d.AsSpan(scratch.Offset(CVx), n).CopyTo(w.VelX.AsSpan(first, n));
-                d.AsSpan(scratch.Offset(CVy), n).CopyTo(w.VelY.AsSpan(first, n));
-                d.AsSpan(scratch.Offset(CVz), n).CopyTo(w.VelZ.AsSpan(first, n));
+                d.Slice(scratch.Offset(CVx), n).CopyTo(w.VelX.AsSpan(first, n));
+                d.Slice(scratch.Offset(CVy), n).CopyTo(w.VelY.AsSpan(first, n));
+                d.Slice(scratch.Offset(CVz), n).CopyTo(w.VelZ.AsSpan(first, n));
             }
         }
     }
 
-    private static void Copy(float[] src, int first, int n, StrandScratch scratch, int field)
+    private static void Copy(float[] src, int first, int n, scoped StrandScratch scratch, int field)
     {
-        src.AsSpan(first, n).CopyTo(scratch.Data.AsSpan(scratch.Offset(field), n));
+        src.AsSpan(first, n).CopyTo(scratch.Data.Slice(scratch.Offset(field), n));
         // Padding lanes hold zeros (finite), never a previous strand's values that could be NaN.
-        scratch.Data.AsSpan(scratch.Offset(field) + n, 2 * Vector<float>.Count).Clear();
+        scratch.Data.Slice(scratch.Offset(field) + n, 2 * Vector<float>.Count).Clear();
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -116,7 +119,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
         return Vector.GreaterThanOrEqual(k, Vector<int>.One) & Vector.LessThanOrEqual(k, new Vector<int>(n - 2));
     }
 
-    private static void Strand(ref StrandView v, HairWorld w, int first, int n, bool padded, in Params p, StrandScratch scratch)
+    private static void Strand(ref StrandView v, HairWorld w, int first, int n, bool padded, in Params p, scoped StrandScratch scratch)
     {
         int width = Vector<float>.Count;
         ref float g = ref scratch.Data[0];
@@ -166,7 +169,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
     /// from the root to the tip (<see cref="ShapeMatchSystem.TransportFrame"/>, a chain: each triple needs the
     /// previous frame), so this part cannot run across particles. It runs only for strands with a bent rest shape.
     /// </summary>
-    private static void BendDirections(ref StrandView v, HairWorld w, int first, int n, in Params p, StrandScratch scratch, ref float g)
+    private static void BendDirections(ref StrandView v, HairWorld w, int first, int n, in Params p, scoped StrandScratch scratch, ref float g)
     {
         var frame = p.HeadRotation;
         int o = scratch.Offset(0), st = scratch.Stride;
@@ -236,7 +239,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
     /// in double, and a particle moves exactly onto its goal, so absolute-coordinate rounding would pile up.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Triples(ref StrandView v, int k0, int n, bool bent, in Params p, StrandScratch scratch, ref float g)
+    private static void Triples(ref StrandView v, int k0, int n, bool bent, in Params p, scoped StrandScratch scratch, ref float g)
     {
         var valid = ValidTriple(k0, n);
         var bx = Simd.Ld(ref v.Px, k0); var by = Simd.Ld(ref v.Py, k0); var bz = Simd.Ld(ref v.Pz, k0);
@@ -288,7 +291,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
     }
 
     /// <summary>One triple whose ends coincide: the axis falls back to the rest axis carried by the head, as in the reference.</summary>
-    private static void ScalarTriple(ref StrandView v, int k, bool bent, in Params p, StrandScratch scratch, ref float g)
+    private static void ScalarTriple(ref StrandView v, int k, bool bent, in Params p, scoped StrandScratch scratch, ref float g)
     {
         TripleAxis(ref v, k, in p, out var e, out var o, out _);
         var b = new Vector3(Unsafe.Add(ref v.Px, k), Unsafe.Add(ref v.Py, k), Unsafe.Add(ref v.Pz, k));
@@ -307,7 +310,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
 
     /// <summary>Velocity change of particles j0 … j0 + Width − 1 (lanes below <paramref name="fresh"/> are left alone).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Particles(ref StrandView v, int j0, int fresh, int n, in Params p, StrandScratch scratch, ref float g)
+    private static void Particles(ref StrandView v, int j0, int fresh, int n, in Params p, scoped StrandScratch scratch, ref float g)
     {
         var dvx = Vector<float>.Zero; var dvy = Vector<float>.Zero; var dvz = Vector<float>.Zero;
         if (p.Alpha > 0f && n >= 3)
