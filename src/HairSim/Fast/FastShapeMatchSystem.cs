@@ -6,10 +6,10 @@ namespace HairSim.Fast;
 /// <summary>
 /// Fast <see cref="ShapeMatchSystem"/> in float SIMD, vectorised along each strand: one pass computes the
 /// three goals of Width triples at once (triple k reads particles k−1, k, k+1 with unaligned loads), a second
-/// pass sums each particle's goals (from triples j+1, j, j−1) and updates its velocity. The rare degenerate
-/// triples (coincident ends, or a bent rest shape whose current triple is straight) are redone in scalar code
-/// with the reference's fallbacks. Strands shorter than Width + 2 are copied into padded scratch first, so no
-/// load or store ever leaves the strand.
+/// pass sums each particle's goals (from triples j+1, j, j−1) and updates its velocity. Bent strands first get
+/// their bend directions in a scalar pass (the reference carries a frame from root to tip, a chain). Triples whose
+/// ends coincide are redone in scalar code with the reference's fallback axis. Strands shorter than Width + 2 are
+/// copied into padded scratch first, so no load or store ever leaves the strand.
 /// </summary>
 public sealed class FastShapeMatchSystem : IHairSystem
 {
