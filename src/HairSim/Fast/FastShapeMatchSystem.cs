@@ -34,6 +34,8 @@ public sealed class FastShapeMatchSystem : IHairSystem
     {
         public readonly Vector<float> F, FHalf, FThird, BetaOverH, Third, LenEps;
         public readonly Vector<int> Two, Three;
+        /// <summary>α/h divided by the goal count of the first and last Width particles of a long strand (1, 2, 3, … / …, 3, 2, 1).</summary>
+        public readonly Vector<float> FirstF, LastF;
         public readonly float Alpha, Beta;
         public readonly PoseLanes Head;
         public readonly Quaternion HeadRotation;
@@ -44,6 +46,14 @@ public sealed class FastShapeMatchSystem : IHairSystem
             float f = literal ? h * alpha : alpha / h;
             F = new(f); FHalf = new(f / 2f); FThird = new(f / 3f);
             Two = new(2); Three = new(3);
+            int width = Vector<float>.Count;
+            Span<float> first = stackalloc float[width], last = stackalloc float[width];
+            for (int l = 0; l < width; l++)
+            {
+                first[l] = l == 0 ? f : l == 1 ? f / 2f : f / 3f;
+                last[l] = l == width - 1 ? f : l == width - 2 ? f / 2f : f / 3f;
+            }
+            FirstF = new(first); LastF = new(last);
             BetaOverH = new(beta / h);
             Third = new(1f / 3f);
             LenEps = new(1e-12f);
@@ -139,13 +149,59 @@ public sealed class FastShapeMatchSystem : IHairSystem
         }
         if (padded)
             for (int j0 = 0; j0 < n; j0 += width) Particles(ref v, j0, j0, n, in p, scratch, ref g);
+        else if (p.Alpha > 0f)
+        {
+            // Zero the goal slots no triple fills (before the root's and past the tip's), so the sums need no masks.
+            int o = scratch.Offset(0), st = scratch.Stride;
+            for (int c = 0; c < 3; c++)
+            {
+                Unsafe.Add(ref g, o + (GPx + c) * st + n - 1) = 0f; Unsafe.Add(ref g, o + (GPx + c) * st + n) = 0f;
+                Unsafe.Add(ref g, o + (GMx + c) * st) = 0f; Unsafe.Add(ref g, o + (GMx + c) * st + n - 1) = 0f;
+                Unsafe.Add(ref g, o + (GNx + c) * st - 1) = 0f; Unsafe.Add(ref g, o + (GNx + c) * st) = 0f;
+            }
+            int j0 = 0;
+            for (; j0 + width <= n; j0 += width)
+            {
+                // A chunk ending just short of the tip holds a count-2 particle in an odd lane: the masked version.
+                if (j0 != 0 && j0 + width != n && j0 + width - 1 >= n - 2) Particles(ref v, j0, j0, n, in p, scratch, ref g);
+                else ParticlesAlongStrand(ref v, j0, j0, n, in p, scratch, ref g);
+            }
+            // Overlapping last chunk: lanes before j0 were already updated and are masked out.
+            if (j0 < n) ParticlesAlongStrand(ref v, n - width, j0, n, in p, scratch, ref g);
+        }
         else
         {
             int j0 = 0;
             for (; j0 + width <= n; j0 += width) Particles(ref v, j0, j0, n, in p, scratch, ref g);
-            // Overlapping last chunk: lanes before j0 were already updated and are masked out.
             if (j0 < n) Particles(ref v, n - width, j0, n, in p, scratch, ref g);
         }
+    }
+
+    /// <summary>
+    /// <see cref="Particles"/> for a strand of at least Width + 2 particles whose unused goal slots are zero: the
+    /// goal count is 1, 2, 3, …, 3, 2, 1 along the strand, so the first and last chunk take fixed factor patterns
+    /// and the sums need no masks.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void ParticlesAlongStrand(ref StrandView v, int j0, int fresh, int n, in Params p, scoped StrandScratch scratch, ref float g)
+    {
+        int o = scratch.Offset(0) + j0, st = scratch.Stride;
+        var sx = Simd.Ld(ref g, o + 1 + GPx * st) + Simd.Ld(ref g, o + GMx * st) + Simd.Ld(ref g, o - 1 + GNx * st);
+        var sy = Simd.Ld(ref g, o + 1 + GPy * st) + Simd.Ld(ref g, o + GMy * st) + Simd.Ld(ref g, o - 1 + GNy * st);
+        var sz = Simd.Ld(ref g, o + 1 + GPz * st) + Simd.Ld(ref g, o + GMz * st) + Simd.Ld(ref g, o - 1 + GNz * st);
+        var f = j0 == 0 ? p.FirstF : j0 + Vector<float>.Count == n ? p.LastF : p.FThird;
+        var dvx = f * sx; var dvy = f * sy; var dvz = f * sz;
+        if (p.Beta > 0f)
+        {
+            var x = Simd.Ld(ref v.Px, j0); var y = Simd.Ld(ref v.Py, j0); var z = Simd.Ld(ref v.Pz, j0);
+            p.Head.Point(Simd.Ld(ref v.Rx, j0), Simd.Ld(ref v.Ry, j0), Simd.Ld(ref v.Rz, j0), out var gx, out var gy, out var gz);
+            dvx += p.BetaOverH * (gx - x); dvy += p.BetaOverH * (gy - y); dvz += p.BetaOverH * (gz - z);
+        }
+        var apply = ~Vector.Equals(Simd.Ld(ref v.M, j0), Vector<float>.Zero);
+        if (fresh != j0) apply &= Vector.GreaterThanOrEqual(Simd.Lane + new Vector<int>(j0), new Vector<int>(fresh));
+        Simd.St(ref v.Vx, j0, Simd.Sel(apply, Simd.Ld(ref v.Vx, j0) + dvx, Simd.Ld(ref v.Vx, j0)));
+        Simd.St(ref v.Vy, j0, Simd.Sel(apply, Simd.Ld(ref v.Vy, j0) + dvy, Simd.Ld(ref v.Vy, j0)));
+        Simd.St(ref v.Vz, j0, Simd.Sel(apply, Simd.Ld(ref v.Vz, j0) + dvz, Simd.Ld(ref v.Vz, j0)));
     }
 
     /// <summary>Does any triple of the strand (1 … n − 2) have a bent rest shape?</summary>
