@@ -129,6 +129,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
         return Vector.GreaterThanOrEqual(k, Vector<int>.One) & Vector.LessThanOrEqual(k, new Vector<int>(n - 2));
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Strand(ref StrandView v, HairWorld w, int first, int n, bool padded, in Params p, scoped StrandScratch scratch)
     {
         int width = Vector<float>.Count;
