@@ -131,6 +131,7 @@ public sealed class FastLengthSystem : IHairSystem
     }
 
     /// <summary>Strand l's particles (rows of length <paramref name="rows"/> from <paramref name="first"/>) into tile column l, 8 strands at a time.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void TransposeIn(float[] src, int first, int rows, scoped StrandScratch t, int field)
     {
         int lanes = Lanes;
@@ -142,6 +143,7 @@ public sealed class FastLengthSystem : IHairSystem
         }
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows)
     {
         int lanes = Lanes;
@@ -173,6 +175,7 @@ public sealed class FastLengthSystem : IHairSystem
         }
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void FollowTheLeader(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, int rows, float h, float damping, in PoseLanes head)
     {
         int width = Vector<float>.Count;
