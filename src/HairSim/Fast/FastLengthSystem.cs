@@ -164,12 +164,12 @@ public sealed class FastLengthSystem : IHairSystem
 
     private readonly struct FtlParams
     {
-        public readonly Vector<float> InvH, Damp, Eps;
+        public readonly Vector<float> InvH, Damp, Eps2;
         public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Lanes;
 
         public FtlParams(scoped StrandScratch t, float h, float damping)
         {
-            InvH = new(1f / h); Damp = new(damping); Eps = new(1e-12f);
+            InvH = new(1f / h); Damp = new(damping); Eps2 = new(1e-24f); // |e| < 1e-12, squared
             Ox = t.Offset(TX); Oy = t.Offset(TY); Oz = t.Offset(TZ); Ovx = t.Offset(TVx); Ovy = t.Offset(TVy); Ovz = t.Offset(TVz);
             Om = t.Offset(TM); Ol = t.Offset(TL); Lanes = FastLengthSystem.Lanes;
         }
@@ -205,20 +205,21 @@ public sealed class FastLengthSystem : IHairSystem
         var x = Simd.Ld(ref d, p.Ox + r); var y = Simd.Ld(ref d, p.Oy + r); var z = Simd.Ld(ref d, p.Oz + r);
         var free = ~Vector.Equals(Simd.Ld(ref d, p.Om + r), Vector<float>.Zero);
         var ex = x - c.Px; var ey = y - c.Py; var ez = z - c.Pz;
-        var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
-        var degenerate = free & Vector.LessThan(len, p.Eps);
+        var len2 = ex * ex + ey * ey + ez * ez;
+        var degenerate = free & Vector.LessThan(len2, p.Eps2);
         Vector<float> dx, dy, dz;
         if (Vector.EqualsAll(degenerate, Vector<int>.Zero))
         {
             // Correction d = leader + e·ratio − x. With e = x − leader that is e·(ratio − 1), which keeps float
             // rounding at segment scale (the reference computes it in double).
-            var corr = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One) - Vector<float>.One;
+            var corr = Simd.Ld(ref d, p.Ol + r) * Simd.InvSqrt(Simd.Sel(free, len2, Vector<float>.One)) - Vector<float>.One;
             corr = Simd.Sel(free, corr, Vector<float>.Zero);
             dx = ex * corr; dy = ey * corr; dz = ez * corr;
         }
         else
         {
             // Coincident neighbours: the edge takes the reference's fallback axis; d = leader + axis·ratio − x.
+            var len = Vector.SquareRoot(len2);
             var ox = ex; var oy = ey; var oz = ez;
             RestAxis(w, firsts.Slice(half), k, degenerate, in head, ref ex, ref ey, ref ez, ref len);
             var ratio = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One);

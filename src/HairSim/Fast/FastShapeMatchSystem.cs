@@ -32,7 +32,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
 
     private readonly struct Params
     {
-        public readonly Vector<float> F, FHalf, FThird, BetaOverH, Third, LenEps;
+        public readonly Vector<float> F, FHalf, FThird, BetaOverH, Third, LenEps2;
         public readonly Vector<int> Two, Three;
         /// <summary>α/h divided by the goal count of the first and last Width particles of a long strand (1, 2, 3, … / …, 3, 2, 1).</summary>
         public readonly Vector<float> FirstF, LastF;
@@ -56,7 +56,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
             FirstF = new(first); LastF = new(last);
             BetaOverH = new(beta / h);
             Third = new(1f / 3f);
-            LenEps = new(1e-12f);
+            LenEps2 = new(1e-24f); // |p[k+1] − p[k−1]| > 1e-12, squared
             Head = new PoseLanes(head);
             HeadRotation = head.Rotation;
         }
@@ -305,9 +305,9 @@ public sealed class FastShapeMatchSystem : IHairSystem
         // Centroid relative to the middle particle.
         var ox = (ax + cx) * p.Third; var oy = (ay + cy) * p.Third; var oz = (az + cz) * p.Third;
         var ex = cx - ax; var ey = cy - ay; var ez = cz - az;
-        var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
-        var ok = Vector.GreaterThan(len, p.LenEps);
-        var inv = Vector<float>.One / Simd.Sel(ok, len, Vector<float>.One);
+        var len2 = ex * ex + ey * ey + ez * ez;
+        var ok = Vector.GreaterThan(len2, p.LenEps2);
+        var inv = Simd.InvSqrt(Simd.Sel(ok, len2, Vector<float>.One));
         ex *= inv; ey *= inv; ez *= inv;
         var degenerate = valid & ~ok;
         int o = scratch.Offset(0) + k0, st = scratch.Stride;
