@@ -8,6 +8,7 @@ var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
     ["style"] = (StyleCommand.Help, StyleCommand.Execute),
     ["report"] = (ReportCommand.Help, ReportCommand.Execute),
     ["stability"] = (StabilityCommand.Help, StabilityCommand.Execute),
+    ["bench"] = (BenchCommand.Help, BenchCommand.Execute),
 };
 
 if (args.Length == 0 || args[0] is "-h" or "--help" or "help")

@@ -54,7 +54,7 @@ public sealed class SimulationSettings
     public float TeleportDistance { get; set; } = 0.5f;
     /// <summary>Head turns more than this (radians) in one frame count as a teleport.</summary>
     public float TeleportAngle { get; set; } = MathF.PI / 3f;
-    public SolverPath Path { get; set; } = SolverPath.Reference;
+    public SolverPath Path { get; set; } = SolverPath.Fast;
     /// <summary>
     /// Stability guards (see StabilityGuards): α clamped to 1 in Müller mode, and automatic substepping so no substep
     /// is longer than <see cref="MaxSubstep"/> and the head moves at most <see cref="MaxHeadTravel"/> per substep.

@@ -1,0 +1,4 @@
+using BenchmarkDotNet.Running;
+
+// dotnet run -c Release --project benchmarks/HairSim.Benchmarks -- --filter '*'
+BenchmarkSwitcher.FromAssembly(typeof(HairSim.Benchmarks.FrameBenchmarks).Assembly).Run(args);

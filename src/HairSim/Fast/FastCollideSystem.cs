@@ -1,0 +1,140 @@
+using System.Runtime.CompilerServices;
+using System.Numerics;
+
+namespace HairSim.Fast;
+
+/// <summary>
+/// Fast <see cref="CollideSystem"/>: one SIMD pass per collider (particles are independent, so this equals the
+/// reference's per-particle loop over colliders). Ellipsoid: radial projection as in <see cref="Collider.Resolve"/>;
+/// sphere and capsule share one kernel (a sphere is a capsule with both ends at its centre).
+/// </summary>
+public sealed class FastCollideSystem : IHairSystem
+{
+    public string Name => CollideSystem.SystemName;
+    public SystemPhase Phase => SystemPhase.Substep;
+
+    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
+    {
+        var colliders = ctx.CollidersAt(substep);
+        float slide = ctx.Settings.ContactSlide;
+        for (int c = 0; c < colliders.Length; c++)
+        {
+            var col = colliders[c];
+            if (col.Kind == ColliderKind.Ellipsoid)
+            {
+                var k = new EllipsoidKernel(col, slide);
+                ParticleRuns.ForEachLive(scene.World, begin, end, ref k);
+            }
+            else
+            {
+                var k = new CapsuleKernel(col, slide);
+                ParticleRuns.ForEachLive(scene.World, begin, end, ref k);
+            }
+        }
+    }
+
+    /// <summary>Velocity response shared by all kinds: drop the inward normal part, keep ContactSlide of the rest.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Respond(Vector<int> hit, Vector<float> nx, Vector<float> ny, Vector<float> nz, Vector<float> slide,
+                                ref float vx, ref float vy, ref float vz)
+    {
+        var x = Simd.Ld(ref vx, 0); var y = Simd.Ld(ref vy, 0); var z = Simd.Ld(ref vz, 0);
+        var vn = x * nx + y * ny + z * nz;
+        var m = hit & Vector.LessThan(vn, Vector<float>.Zero);
+        if (Vector.EqualsAll(m, Vector<int>.Zero)) return;
+        Simd.St(ref vx, 0, Simd.Sel(m, (x - vn * nx) * slide, x));
+        Simd.St(ref vy, 0, Simd.Sel(m, (y - vn * ny) * slide, y));
+        Simd.St(ref vz, 0, Simd.Sel(m, (z - vn * nz) * slide, z));
+    }
+
+    private readonly struct EllipsoidKernel : IParticleKernel
+    {
+        private readonly PoseLanes _toLocal, _toWorld;
+        private readonly Vector<float> _cx, _cy, _cz, _invRx, _invRy, _invRz, _invRx2, _invRy2, _invRz2, _ry, _slide;
+
+        public EllipsoidKernel(in Collider c, float slide)
+        {
+            _toLocal = PoseLanes.InverseRotation(c.Rotation);
+            _toWorld = new PoseLanes(c.Rotation, c.Center);
+            _cx = new(c.Center.X); _cy = new(c.Center.Y); _cz = new(c.Center.Z);
+            _invRx = new(1f / c.Radii.X); _invRy = new(1f / c.Radii.Y); _invRz = new(1f / c.Radii.Z);
+            _invRx2 = new(1f / (c.Radii.X * c.Radii.X)); _invRy2 = new(1f / (c.Radii.Y * c.Radii.Y)); _invRz2 = new(1f / (c.Radii.Z * c.Radii.Z));
+            _ry = new(c.Radii.Y);
+            _slide = new(slide);
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public void Chunk(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
+                          ref float invMass, ref float rx, ref float ry, ref float rz)
+        {
+            var x = Simd.Ld(ref px, 0); var y = Simd.Ld(ref py, 0); var z = Simd.Ld(ref pz, 0);
+            _toLocal.Direction(x - _cx, y - _cy, z - _cz, out var lx, out var ly, out var lz);
+            var qx = lx * _invRx; var qy = ly * _invRy; var qz = lz * _invRz;
+            var r = Vector.SquareRoot(qx * qx + qy * qy + qz * qz);
+            var hit = Vector.LessThan(r, Vector<float>.One) & ~Vector.Equals(Simd.Ld(ref invMass, 0), Vector<float>.Zero);
+            if (Vector.EqualsAll(hit, Vector<int>.Zero)) return;
+            // A particle at the centre is pushed along local +Y, as the reference does.
+            var centre = Vector.LessThan(r, new Vector<float>(1e-12f));
+            var inv = Vector<float>.One / Simd.Sel(centre, Vector<float>.One, r);
+            var sx = Simd.Sel(centre, Vector<float>.Zero, lx * inv);
+            var sy = Simd.Sel(centre, _ry, ly * inv);
+            var sz = Simd.Sel(centre, Vector<float>.Zero, lz * inv);
+            var nx = sx * _invRx2; var ny = sy * _invRy2; var nz = sz * _invRz2;
+            var nInv = Vector<float>.One / Vector.SquareRoot(nx * nx + ny * ny + nz * nz);
+            _toWorld.Point(sx, sy, sz, out var wx, out var wy, out var wz);
+            _toWorld.Direction(nx * nInv, ny * nInv, nz * nInv, out var wnx, out var wny, out var wnz);
+            Simd.St(ref px, 0, Simd.Sel(hit, wx, x));
+            Simd.St(ref py, 0, Simd.Sel(hit, wy, y));
+            Simd.St(ref pz, 0, Simd.Sel(hit, wz, z));
+            Respond(hit, wnx, wny, wnz, _slide, ref vx, ref vy, ref vz);
+        }
+    }
+
+    private readonly struct CapsuleKernel : IParticleKernel
+    {
+        private readonly Vector<float> _ax, _ay, _az, _abx, _aby, _abz, _invLen2, _radius, _slide, _fx, _fy, _fz;
+        private readonly bool _segment;
+
+        public CapsuleKernel(in Collider c, float slide)
+        {
+            var ab = c.Kind == ColliderKind.Capsule ? c.End - c.Center : Vector3.Zero;
+            float len2 = Vector3.Dot(ab, ab);
+            _segment = len2 >= 1e-18f;
+            _ax = new(c.Center.X); _ay = new(c.Center.Y); _az = new(c.Center.Z);
+            _abx = new(ab.X); _aby = new(ab.Y); _abz = new(ab.Z);
+            _invLen2 = new(_segment ? 1f / len2 : 0f);
+            _radius = new(c.Radius);
+            _slide = new(slide);
+            // On the axis itself the reference pushes sideways (perpendicular to the axis); a sphere pushes along +Y.
+            var fallback = _segment ? RestShape.AnyPerpendicular(Vector3.Normalize(ab)) : Vector3.UnitY;
+            _fx = new(fallback.X); _fy = new(fallback.Y); _fz = new(fallback.Z);
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public void Chunk(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
+                          ref float invMass, ref float rx, ref float ry, ref float rz)
+        {
+            var x = Simd.Ld(ref px, 0); var y = Simd.Ld(ref py, 0); var z = Simd.Ld(ref pz, 0);
+            var cx = _ax; var cy = _ay; var cz = _az;
+            if (_segment)
+            {
+                var t = ((x - _ax) * _abx + (y - _ay) * _aby + (z - _az) * _abz) * _invLen2;
+                t = Vector.Min(Vector.Max(t, Vector<float>.Zero), Vector<float>.One);
+                cx += t * _abx; cy += t * _aby; cz += t * _abz;
+            }
+            var dx = x - cx; var dy = y - cy; var dz = z - cz;
+            var dist = Vector.SquareRoot(dx * dx + dy * dy + dz * dz);
+            var hit = Vector.LessThan(dist, _radius) & ~Vector.Equals(Simd.Ld(ref invMass, 0), Vector<float>.Zero);
+            if (Vector.EqualsAll(hit, Vector<int>.Zero)) return;
+            var onAxis = Vector.LessThan(dist, new Vector<float>(1e-12f));
+            var inv = Vector<float>.One / Simd.Sel(onAxis, Vector<float>.One, dist);
+            var nx = Simd.Sel(onAxis, _fx, dx * inv);
+            var ny = Simd.Sel(onAxis, _fy, dy * inv);
+            var nz = Simd.Sel(onAxis, _fz, dz * inv);
+            Simd.St(ref px, 0, Simd.Sel(hit, cx + nx * _radius, x));
+            Simd.St(ref py, 0, Simd.Sel(hit, cy + ny * _radius, y));
+            Simd.St(ref pz, 0, Simd.Sel(hit, cz + nz * _radius, z));
+            Respond(hit, nx, ny, nz, _slide, ref vx, ref vy, ref vz);
+        }
+    }
+}

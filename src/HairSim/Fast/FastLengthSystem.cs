@@ -1,0 +1,310 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+
+namespace HairSim.Fast;
+
+/// <summary>
+/// Fast <see cref="LengthSystem"/> in float. Follow-the-leader is a chain along each strand (particle k needs
+/// particle k−1 already corrected), so it cannot be vectorised along the strand; it is vectorised across
+/// strands instead: 2 × Width strands are transposed into a small per-thread tile (row k = particle k of each
+/// strand, as two SIMD vectors), swept root to tip together, and written back. Two independent vectors per row
+/// let the CPU overlap two dependency chains (sqrt and divide latency). PBD runs the same way with its
+/// Gauss–Seidel sweeps. Lanes past a strand's live count, and padding lanes of the last group, are masked out
+/// (InvMass 0).
+/// </summary>
+public sealed class FastLengthSystem : IHairSystem
+{
+    public string Name => LengthSystem.SystemName;
+    public SystemPhase Phase => SystemPhase.Substep;
+
+    // Tile fields, each maxCapacity rows × Lanes.
+    private const int TX = 0, TY = 1, TZ = 2, TVx = 3, TVy = 4, TVz = 5, TM = 6, TL = 7, TOx = 8, TOy = 9, TOz = 10, FieldCount = 11;
+
+    /// <summary>SIMD vectors per tile row.</summary>
+    private const int Halves = 2;
+    private static int Lanes => Halves * Vector<float>.Count;
+
+    private readonly int _maxCapacity;
+
+    public FastLengthSystem(int maxStrandCapacity) => _maxCapacity = maxStrandCapacity;
+
+    // The stack scratch is fully written before it is read, or only read in lanes that are masked out.
+    [SkipLocalsInit]
+    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
+    {
+        var st = ctx.Settings;
+        if (st.Length == LengthMode.None) return;
+        var w = scene.World;
+        int lanes = Lanes, width = Vector<float>.Count;
+        // The tile is a StrandScratch whose "capacity" is rows × lanes.
+        int size = StrandScratch.Size(_maxCapacity * lanes, FieldCount);
+        var scratch = new StrandScratch(size <= StrandScratch.StackFloats ? stackalloc float[size] : StrandScratch.Heap(size), _maxCapacity * lanes);
+        var head = new PoseLanes(ctx.HeadAt(substep));
+        Span<int> firsts = stackalloc int[lanes];
+        Span<int> counts = stackalloc int[lanes];
+        for (int s0 = begin; s0 < end; s0 += lanes)
+        {
+            int used = Math.Min(lanes, end - s0);
+            int rows = 0;
+            bool uniform = used == lanes && Transpose.Available;
+            for (int l = 0; l < lanes; l++)
+            {
+                firsts[l] = l < used ? w.StrandFirst[s0 + l] : 0;
+                counts[l] = l < used ? w.StrandParticleCount[s0 + l] : 0;
+                rows = Math.Max(rows, counts[l]);
+                if (l < used) uniform &= counts[l] == w.StrandCapacity[s0 + l];
+            }
+            // Uniform: whole strands of one capacity (a multiple of 8), back to back.
+            uniform &= rows % 8 == 0 && counts[0] == rows;
+            for (int l = 1; uniform && l < lanes; l++) uniform = counts[l] == rows && firsts[l] == firsts[0] + l * rows;
+            Gather(w, scratch, firsts, counts, rows, uniform);
+            if (st.Length == LengthMode.FollowTheLeader) FollowTheLeader(w, scratch, firsts, rows, ctx.H, st.LengthDamping, in head);
+            else Pbd(scratch, rows, ctx.H, st.LengthIterations);
+            Scatter(w, scratch, firsts, counts, rows, uniform);
+        }
+    }
+
+    /// <summary>
+    /// Fills the tile from the world. Uniform groups (Width whole strands of equal capacity, a multiple of 8,
+    /// laid out back to back, as every uncut groom is) use 8 × 8 SIMD transposes; anything else is copied
+    /// element by element.
+    /// </summary>
+    private static void Gather(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
+    {
+        int width = Lanes;
+        Span<float> d = t.Data;
+        if (uniform)
+        {
+            int first = firsts[0];
+            TransposeIn(w.PosX, first, rows, t, TX); TransposeIn(w.PosY, first, rows, t, TY); TransposeIn(w.PosZ, first, rows, t, TZ);
+            TransposeIn(w.VelX, first, rows, t, TVx); TransposeIn(w.VelY, first, rows, t, TVy); TransposeIn(w.VelZ, first, rows, t, TVz);
+            TransposeIn(w.InvMass, first, rows, t, TM); TransposeIn(w.RestLength, first, rows, t, TL);
+            return;
+        }
+        int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
+            om = t.Offset(TM), ol = t.Offset(TL);
+        // Masked lanes: InvMass 0 (never moved) at a finite position; their results are never written back.
+        d.Slice(om, rows * width).Clear();
+        d.Slice(ox, rows * width).Clear(); d.Slice(oy, rows * width).Clear(); d.Slice(oz, rows * width).Clear();
+        d.Slice(ol, rows * width).Clear();
+        ref float dd = ref d[0];
+        ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
+        ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
+        ref float m = ref Simd.At(w.InvMass, 0), l0 = ref Simd.At(w.RestLength, 0);
+        for (int l = 0; l < width; l++)
+        {
+            int first = firsts[l], n = counts[l];
+            for (int k = 0; k < n; k++)
+            {
+                int i = first + k, r = k * width + l;
+                Unsafe.Add(ref dd, ox + r) = Unsafe.Add(ref px, i); Unsafe.Add(ref dd, oy + r) = Unsafe.Add(ref py, i); Unsafe.Add(ref dd, oz + r) = Unsafe.Add(ref pz, i);
+                Unsafe.Add(ref dd, ovx + r) = Unsafe.Add(ref vx, i); Unsafe.Add(ref dd, ovy + r) = Unsafe.Add(ref vy, i); Unsafe.Add(ref dd, ovz + r) = Unsafe.Add(ref vz, i);
+                Unsafe.Add(ref dd, om + r) = Unsafe.Add(ref m, i); Unsafe.Add(ref dd, ol + r) = Unsafe.Add(ref l0, i);
+            }
+        }
+    }
+
+    private static void Scatter(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
+    {
+        int width = Lanes;
+        if (uniform)
+        {
+            int first = firsts[0];
+            TransposeOut(t, TX, w.PosX, first, rows); TransposeOut(t, TY, w.PosY, first, rows); TransposeOut(t, TZ, w.PosZ, first, rows);
+            TransposeOut(t, TVx, w.VelX, first, rows); TransposeOut(t, TVy, w.VelY, first, rows); TransposeOut(t, TVz, w.VelZ, first, rows);
+            return;
+        }
+        ref float dd = ref t.Data[0];
+        int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz);
+        ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
+        ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
+        for (int l = 0; l < width; l++)
+        {
+            int first = firsts[l], n = counts[l];
+            for (int k = 0; k < n; k++)
+            {
+                int i = first + k, r = k * width + l;
+                Unsafe.Add(ref px, i) = Unsafe.Add(ref dd, ox + r); Unsafe.Add(ref py, i) = Unsafe.Add(ref dd, oy + r); Unsafe.Add(ref pz, i) = Unsafe.Add(ref dd, oz + r);
+                Unsafe.Add(ref vx, i) = Unsafe.Add(ref dd, ovx + r); Unsafe.Add(ref vy, i) = Unsafe.Add(ref dd, ovy + r); Unsafe.Add(ref vz, i) = Unsafe.Add(ref dd, ovz + r);
+            }
+        }
+    }
+
+    /// <summary>Strand l's particles (rows of length <paramref name="rows"/> from <paramref name="first"/>) into tile column l, 8 strands at a time.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void TransposeIn(float[] src, int first, int rows, scoped StrandScratch t, int field)
+    {
+        int lanes = Lanes;
+        ref float d = ref t.Data[t.Offset(field)];
+        for (int g = 0; g < lanes; g += 8)
+        {
+            ref float s = ref Simd.At(src, first + g * rows);
+            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c), rows, ref Unsafe.Add(ref d, c * lanes + g), lanes);
+        }
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows)
+    {
+        int lanes = Lanes;
+        ref float s = ref t.Data[t.Offset(field)];
+        for (int g = 0; g < lanes; g += 8)
+        {
+            ref float d = ref Simd.At(dst, first + g * rows);
+            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows);
+        }
+    }
+
+    /// <summary>Sweep state of one SIMD vector of strands: the corrected previous particle and its correction.</summary>
+    private struct Chain
+    {
+        public Vector<float> Px, Py, Pz, Dx, Dy, Dz;
+        public Vector<int> Free;
+    }
+
+    private readonly struct FtlParams
+    {
+        public readonly Vector<float> InvH, Damp, Eps2;
+        public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Lanes;
+
+        public FtlParams(scoped StrandScratch t, float h, float damping)
+        {
+            InvH = new(1f / h); Damp = new(damping); Eps2 = new(1e-24f); // |e| < 1e-12, squared
+            Ox = t.Offset(TX); Oy = t.Offset(TY); Oz = t.Offset(TZ); Ovx = t.Offset(TVx); Ovy = t.Offset(TVy); Ovz = t.Offset(TVz);
+            Om = t.Offset(TM); Ol = t.Offset(TL); Lanes = FastLengthSystem.Lanes;
+        }
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void FollowTheLeader(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, int rows, float h, float damping, in PoseLanes head)
+    {
+        int width = Vector<float>.Count;
+        ref float d = ref t.Data[0];
+        var p = new FtlParams(t, h, damping);
+        Span<Chain> chains = stackalloc Chain[Halves];
+        for (int c = 0; c < Halves; c++)
+            chains[c] = new Chain { Px = Simd.Ld(ref d, p.Ox + c * width), Py = Simd.Ld(ref d, p.Oy + c * width), Pz = Simd.Ld(ref d, p.Oz + c * width) };
+        for (int k = 1; k < rows; k++)
+        {
+            // Independent chains per row: their sqrt/divide latencies overlap.
+            for (int c = 0; c < Halves; c++) Step(w, ref d, in p, ref chains[c], firsts, k, c * width, in head);
+        }
+        if (rows >= 2)
+        {
+            int r = (rows - 1) * p.Lanes;
+            for (int c = 0; c < Halves; c++)
+                Kick(ref d, r + c * width, p.Ovx, p.Ovy, p.Ovz, chains[c].Free, chains[c].Dx, chains[c].Dy, chains[c].Dz, p.InvH);
+        }
+    }
+
+    /// <summary>Row k of one vector of strands: put particle k at its rest distance from k−1, then kick k−1's velocity.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Step(HairWorld w, ref float d, in FtlParams p, ref Chain c, ReadOnlySpan<int> firsts, int k, int half, in PoseLanes head)
+    {
+        int r = k * p.Lanes + half;
+        var x = Simd.Ld(ref d, p.Ox + r); var y = Simd.Ld(ref d, p.Oy + r); var z = Simd.Ld(ref d, p.Oz + r);
+        var free = ~Vector.Equals(Simd.Ld(ref d, p.Om + r), Vector<float>.Zero);
+        var ex = x - c.Px; var ey = y - c.Py; var ez = z - c.Pz;
+        var len2 = ex * ex + ey * ey + ez * ez;
+        var degenerate = free & Vector.LessThan(len2, p.Eps2);
+        Vector<float> dx, dy, dz;
+        if (Vector.EqualsAll(degenerate, Vector<int>.Zero))
+        {
+            // Correction d = leader + e·ratio − x. With e = x − leader that is e·(ratio − 1), which keeps float
+            // rounding at segment scale (the reference computes it in double).
+            var corr = Simd.Ld(ref d, p.Ol + r) * Simd.InvSqrt(Simd.Sel(free, len2, Vector<float>.One)) - Vector<float>.One;
+            corr = Simd.Sel(free, corr, Vector<float>.Zero);
+            dx = ex * corr; dy = ey * corr; dz = ez * corr;
+        }
+        else
+        {
+            // Coincident neighbours: the edge takes the reference's fallback axis; d = leader + axis·ratio − x.
+            var len = Vector.SquareRoot(len2);
+            var ox = ex; var oy = ey; var oz = ez;
+            RestAxis(w, firsts.Slice(half), k, degenerate, in head, ref ex, ref ey, ref ez, ref len);
+            var ratio = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One);
+            var corr = ratio - Vector<float>.One;
+            dx = Simd.Sel(free, Simd.Sel(degenerate, (c.Px - x) + ex * ratio, ox * corr), Vector<float>.Zero);
+            dy = Simd.Sel(free, Simd.Sel(degenerate, (c.Py - y) + ey * ratio, oy * corr), Vector<float>.Zero);
+            dz = Simd.Sel(free, Simd.Sel(degenerate, (c.Pz - z) + ez * ratio, oz * corr), Vector<float>.Zero);
+        }
+        var tx = x + dx; var ty = y + dy; var tz = z + dz;
+        Simd.St(ref d, p.Ox + r, tx); Simd.St(ref d, p.Oy + r, ty); Simd.St(ref d, p.Oz + r, tz);
+        // Velocity of particle k−1 now that its successor's correction is known: v += (d[k−1] − s·d[k]) / h.
+        if (k >= 2) Kick(ref d, r - p.Lanes, p.Ovx, p.Ovy, p.Ovz, c.Free, c.Dx - p.Damp * dx, c.Dy - p.Damp * dy, c.Dz - p.Damp * dz, p.InvH);
+        c.Px = tx; c.Py = ty; c.Pz = tz;
+        c.Dx = dx; c.Dy = dy; c.Dz = dz; c.Free = free;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Kick(ref float d, int r, int ovx, int ovy, int ovz, Vector<int> free,
+                             Vector<float> cx, Vector<float> cy, Vector<float> cz, Vector<float> invH)
+    {
+        var vx = Simd.Ld(ref d, ovx + r); var vy = Simd.Ld(ref d, ovy + r); var vz = Simd.Ld(ref d, ovz + r);
+        Simd.St(ref d, ovx + r, Simd.Sel(free, vx + cx * invH, vx));
+        Simd.St(ref d, ovy + r, Simd.Sel(free, vy + cy * invH, vy));
+        Simd.St(ref d, ovz + r, Simd.Sel(free, vz + cz * invH, vz));
+    }
+
+    /// <summary>Coincident neighbours (the reference's fallback): the edge takes the rest direction carried by the head, else −Y.</summary>
+    private static void RestAxis(HairWorld w, ReadOnlySpan<int> firsts, int k, Vector<int> degenerate, in PoseLanes head,
+                                 ref Vector<float> ex, ref Vector<float> ey, ref Vector<float> ez, ref Vector<float> len)
+    {
+        int width = Vector<float>.Count;
+        Span<float> buf = stackalloc float[4 * width];
+        ex.CopyTo(buf); ey.CopyTo(buf.Slice(width)); ez.CopyTo(buf.Slice(2 * width)); len.CopyTo(buf.Slice(3 * width));
+        for (int l = 0; l < width; l++)
+        {
+            if (degenerate[l] == 0) continue;
+            int i = firsts[l] + k;
+            var axis = head.Direction(w.GetRest(i) - w.GetRest(i - 1));
+            float al = axis.Length();
+            if (al < 1e-12f) { axis = -Vector3.UnitY; al = 1f; }
+            buf[l] = axis.X; buf[width + l] = axis.Y; buf[2 * width + l] = axis.Z; buf[3 * width + l] = al;
+        }
+        ex = new Vector<float>(buf); ey = new Vector<float>(buf.Slice(width)); ez = new Vector<float>(buf.Slice(2 * width)); len = new Vector<float>(buf.Slice(3 * width));
+    }
+
+    private static void Pbd(scoped StrandScratch t, int rows, float h, int iterations)
+    {
+        int width = Vector<float>.Count, lanes = Lanes;
+        ref float d = ref t.Data[0];
+        int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
+            om = t.Offset(TM), ol = t.Offset(TL), oox = t.Offset(TOx), ooy = t.Offset(TOy), ooz = t.Offset(TOz);
+        int cells = rows * lanes;
+        t.Data.Slice(ox, cells).CopyTo(t.Data.Slice(oox, cells));
+        t.Data.Slice(oy, cells).CopyTo(t.Data.Slice(ooy, cells));
+        t.Data.Slice(oz, cells).CopyTo(t.Data.Slice(ooz, cells));
+        var eps = new Vector<float>(1e-12f);
+        for (int it = 0; it < iterations; it++)
+        {
+            for (int k = 1; k < rows; k++)
+            {
+                for (int half = 0; half < lanes; half += width)
+                {
+                    int a = (k - 1) * lanes + half, b = k * lanes + half;
+                    var wa = Simd.Ld(ref d, om + a); var wb = Simd.Ld(ref d, om + b);
+                    var wsum = wa + wb;
+                    var ax = Simd.Ld(ref d, ox + a); var ay = Simd.Ld(ref d, oy + a); var az = Simd.Ld(ref d, oz + a);
+                    var bx = Simd.Ld(ref d, ox + b); var by = Simd.Ld(ref d, oy + b); var bz = Simd.Ld(ref d, oz + b);
+                    var ex = bx - ax; var ey = by - ay; var ez = bz - az;
+                    var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
+                    var act = ~Vector.Equals(wsum, Vector<float>.Zero) & Vector.GreaterThanOrEqual(len, eps);
+                    if (Vector.EqualsAll(act, Vector<int>.Zero)) continue;
+                    var c = Simd.Sel(act, (len - Simd.Ld(ref d, ol + b)) / Simd.Sel(act, len * wsum, Vector<float>.One), Vector<float>.Zero);
+                    var ca = wa * c; var cb = wb * c;
+                    Simd.St(ref d, ox + a, ax + ca * ex); Simd.St(ref d, oy + a, ay + ca * ey); Simd.St(ref d, oz + a, az + ca * ez);
+                    Simd.St(ref d, ox + b, bx - cb * ex); Simd.St(ref d, oy + b, by - cb * ey); Simd.St(ref d, oz + b, bz - cb * ez);
+                }
+            }
+        }
+        var invH = new Vector<float>(1f / h);
+        for (int r = 0; r < cells; r += width)
+        {
+            var free = ~Vector.Equals(Simd.Ld(ref d, om + r), Vector<float>.Zero);
+            Kick(ref d, r, ovx, ovy, ovz, free,
+                Simd.Ld(ref d, ox + r) - Simd.Ld(ref d, oox + r), Simd.Ld(ref d, oy + r) - Simd.Ld(ref d, ooy + r),
+                Simd.Ld(ref d, oz + r) - Simd.Ld(ref d, ooz + r), invH);
+        }
+    }
+}

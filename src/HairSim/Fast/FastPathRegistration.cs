@@ -1,0 +1,30 @@
+using HairSim.Fast;
+
+namespace HairSim;
+
+/// <summary>Supplies the fast implementation of each core substep system (see <see cref="SolverPath.Fast"/>).</summary>
+internal static partial class FastPathRegistration
+{
+    static partial void ApplyFast(PipelineBuilder builder)
+    {
+        foreach (var f in builder.Factories.ToArray())
+        {
+            Func<HairScene, IHairSystem>? fast = f.Name switch
+            {
+                HeadFollowSystem.SystemName => _ => new FastHeadFollowSystem(),
+                ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity),
+                IntegrateSystem.SystemName => _ => new FastIntegrateSystem(),
+                LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity),
+                CollideSystem.SystemName => _ => new FastCollideSystem(),
+                _ => null,
+            };
+            if (fast != null) builder.Replace(f with { CreateFast = fast });
+        }
+    }
+}
+
+public static partial class ThreadDispatchers
+{
+    static partial void CreateParallel(ref IDisposableDispatcher? dispatcher) =>
+        dispatcher = new ParallelDispatcher(Environment.ProcessorCount);
+}

@@ -1,0 +1,72 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+
+namespace HairSim.Fast;
+
+/// <summary>A per-particle kernel over one SIMD chunk of Width particles, given refs to the chunk's first element.</summary>
+internal interface IParticleKernel
+{
+    void Chunk(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
+               ref float invMass, ref float rx, ref float ry, ref float rz);
+}
+
+/// <summary>
+/// Runs a per-particle kernel over the live particles of strands [begin, end). Strands that are not cut are
+/// contiguous with the next strand, so consecutive whole strands are merged into one run and only the end of a
+/// run needs a partial chunk. That partial chunk is copied into a padded stack buffer (padding lanes have
+/// InvMass 0, so kernels leave them alone) and only its live lanes are copied back: a run never writes past its
+/// last live particle, which may belong to another thread's block.
+/// </summary>
+internal static class ParticleRuns
+{
+    public static void ForEachLive<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel) where TKernel : struct, IParticleKernel
+    {
+        int width = Vector<float>.Count;
+        Span<float> tail = stackalloc float[10 * width];
+        int[] firsts = w.StrandFirst, counts = w.StrandParticleCount, caps = w.StrandCapacity;
+        int s = begin;
+        while (s < end)
+        {
+            int start = firsts[s];
+            int stop = start + counts[s];
+            while (counts[s] == caps[s] && s + 1 < end)
+            {
+                s++;
+                stop = firsts[s] + counts[s];
+            }
+            s++;
+            Run(w, start, stop, ref kernel, tail);
+        }
+    }
+
+    private static void Run<TKernel>(HairWorld w, int start, int stop, ref TKernel kernel, Span<float> tail) where TKernel : struct, IParticleKernel
+    {
+        int width = Vector<float>.Count;
+        int i = start;
+        ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
+        ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
+        ref float m = ref Simd.At(w.InvMass, 0), rx = ref Simd.At(w.RestX, 0), ry = ref Simd.At(w.RestY, 0), rz = ref Simd.At(w.RestZ, 0);
+        for (; i <= stop - width; i += width)
+            kernel.Chunk(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
+                ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
+                ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
+        int r = stop - i;
+        if (r <= 0) return;
+        tail.Clear();
+        CopyIn(w.PosX, i, r, tail, 0); CopyIn(w.PosY, i, r, tail, 1); CopyIn(w.PosZ, i, r, tail, 2);
+        CopyIn(w.VelX, i, r, tail, 3); CopyIn(w.VelY, i, r, tail, 4); CopyIn(w.VelZ, i, r, tail, 5);
+        CopyIn(w.InvMass, i, r, tail, 6); CopyIn(w.RestX, i, r, tail, 7); CopyIn(w.RestY, i, r, tail, 8); CopyIn(w.RestZ, i, r, tail, 9);
+        kernel.Chunk(ref tail[0], ref tail[width], ref tail[2 * width], ref tail[3 * width], ref tail[4 * width], ref tail[5 * width],
+            ref tail[6 * width], ref tail[7 * width], ref tail[8 * width], ref tail[9 * width]);
+        CopyOut(tail, 0, w.PosX, i, r); CopyOut(tail, 1, w.PosY, i, r); CopyOut(tail, 2, w.PosZ, i, r);
+        CopyOut(tail, 3, w.VelX, i, r); CopyOut(tail, 4, w.VelY, i, r); CopyOut(tail, 5, w.VelZ, i, r);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void CopyIn(float[] a, int i, int r, Span<float> tail, int field) =>
+        a.AsSpan(i, r).CopyTo(tail.Slice(field * Vector<float>.Count, r));
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void CopyOut(Span<float> tail, int field, float[] a, int i, int r) =>
+        tail.Slice(field * Vector<float>.Count, r).CopyTo(a.AsSpan(i, r));
+}

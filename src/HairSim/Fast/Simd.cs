@@ -1,0 +1,106 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
+using System.Runtime.Intrinsics;
+
+namespace HairSim.Fast;
+
+/// <summary>
+/// Small helpers for the fast path: unaligned Vector&lt;float&gt; loads and stores on array data without
+/// bounds checks (every caller proves its range first), and lane masks.
+/// </summary>
+internal static class Simd
+{
+    public static int Width => Vector<float>.Count;
+
+    /// <summary>0, 1, …, Width − 1 as ints: lane indices for range masks.</summary>
+    public static readonly Vector<int> Lane = MakeLane();
+
+    private static Vector<int> MakeLane()
+    {
+        Span<int> l = stackalloc int[Vector<int>.Count];
+        for (int i = 0; i < l.Length; i++) l[i] = i;
+        return new Vector<int>(l);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static ref float At(float[] a, int i) => ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(a), i);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static Vector<float> Ld(ref float r, int i) =>
+        Unsafe.ReadUnaligned<Vector<float>>(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)));
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void St(ref float r, int i, Vector<float> v) =>
+        Unsafe.WriteUnaligned(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)), v);
+
+    /// <summary>
+    /// 1/√x for x &gt; 0: the hardware estimate (12 bits) refined by one Newton step (≈ 23 bits, an ulp or two,
+    /// about the rounding of a sqrt and a divide together), much cheaper than both; exact sqrt + divide elsewhere.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static Vector<float> InvSqrt(Vector<float> x)
+    {
+        if (System.Runtime.Intrinsics.X86.Avx.IsSupported && Vector<float>.Count == 8)
+        {
+            var y = System.Runtime.Intrinsics.X86.Avx.ReciprocalSqrt(x.AsVector256()).AsVector();
+            // Newton: y ← y·(1.5 − 0.5·x·y²)
+            return y * (new Vector<float>(1.5f) - new Vector<float>(0.5f) * x * y * y);
+        }
+        return Vector<float>.One / Vector.SquareRoot(x);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static Vector<float> Sel(Vector<int> mask, Vector<float> ifTrue, Vector<float> ifFalse) =>
+        Vector.ConditionalSelect(mask, ifTrue, ifFalse);
+}
+
+/// <summary>A head pose as a 3×3 rotation matrix plus translation, broadcast to SIMD lanes (built once per substep).</summary>
+internal readonly struct PoseLanes
+{
+    public readonly Vector<float> M00, M01, M02, M10, M11, M12, M20, M21, M22, Tx, Ty, Tz;
+    public readonly float S00, S01, S02, S10, S11, S12, S20, S21, S22, STx, STy, STz;
+
+    public PoseLanes(in RigidTransform t) : this(t.Rotation, t.Position) { }
+
+    public PoseLanes(Quaternion q, Vector3 p)
+    {
+        float xx = q.X * q.X, yy = q.Y * q.Y, zz = q.Z * q.Z;
+        float xy = q.X * q.Y, xz = q.X * q.Z, yz = q.Y * q.Z, wx = q.W * q.X, wy = q.W * q.Y, wz = q.W * q.Z;
+        S00 = 1f - 2f * (yy + zz); S01 = 2f * (xy - wz); S02 = 2f * (xz + wy);
+        S10 = 2f * (xy + wz); S11 = 1f - 2f * (xx + zz); S12 = 2f * (yz - wx);
+        S20 = 2f * (xz - wy); S21 = 2f * (yz + wx); S22 = 1f - 2f * (xx + yy);
+        STx = p.X; STy = p.Y; STz = p.Z;
+        M00 = new(S00); M01 = new(S01); M02 = new(S02);
+        M10 = new(S10); M11 = new(S11); M12 = new(S12);
+        M20 = new(S20); M21 = new(S21); M22 = new(S22);
+        Tx = new(STx); Ty = new(STy); Tz = new(STz);
+    }
+
+    /// <summary>The inverse rotation (transpose) with no translation: world directions into local ones.</summary>
+    public static PoseLanes InverseRotation(Quaternion q) => new(Quaternion.Conjugate(q), Vector3.Zero);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public void Point(Vector<float> x, Vector<float> y, Vector<float> z, out Vector<float> ox, out Vector<float> oy, out Vector<float> oz)
+    {
+        ox = M00 * x + M01 * y + M02 * z + Tx;
+        oy = M10 * x + M11 * y + M12 * z + Ty;
+        oz = M20 * x + M21 * y + M22 * z + Tz;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public void Direction(Vector<float> x, Vector<float> y, Vector<float> z, out Vector<float> ox, out Vector<float> oy, out Vector<float> oz)
+    {
+        ox = M00 * x + M01 * y + M02 * z;
+        oy = M10 * x + M11 * y + M12 * z;
+        oz = M20 * x + M21 * y + M22 * z;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public Vector3 Point(Vector3 v) => new(
+        S00 * v.X + S01 * v.Y + S02 * v.Z + STx, S10 * v.X + S11 * v.Y + S12 * v.Z + STy, S20 * v.X + S21 * v.Y + S22 * v.Z + STz);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public Vector3 Direction(Vector3 v) => new(
+        S00 * v.X + S01 * v.Y + S02 * v.Z, S10 * v.X + S11 * v.Y + S12 * v.Z, S20 * v.X + S21 * v.Y + S22 * v.Z);
+}

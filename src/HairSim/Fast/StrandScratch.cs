@@ -1,0 +1,40 @@
+using System.Numerics;
+
+namespace HairSim.Fast;
+
+/// <summary>
+/// Scratch for per-strand kernels and length tiles: <see cref="Fields"/> slices of <see cref="Stride"/> floats.
+/// Field f starts at <see cref="Offset"/>(f); indices −Width … −1 of each slice are valid too, so kernels can read
+/// one particle before the root without a branch. Callers put it on the stack (stackalloc, up to
+/// <see cref="StackFloats"/>), so a step allocates nothing on any thread, ever; only scratch for very long strands
+/// falls back to a per-thread heap buffer, allocated once per thread.
+/// </summary>
+internal readonly ref struct StrandScratch
+{
+    /// <summary>Scratch up to this size (64 KB) goes on the stack: strands up to ~90 particles for length tiles, ~600 for shape matching.</summary>
+    public const int StackFloats = 16 * 1024;
+
+    [ThreadStatic] private static float[]? _heap;
+
+    public readonly Span<float> Data;
+    public readonly int Stride;
+
+    public StrandScratch(Span<float> data, int capacity)
+    {
+        Data = data;
+        Stride = capacity + 3 * Vector<float>.Count;
+    }
+
+    /// <summary>Floats needed for <paramref name="fields"/> slices of <paramref name="capacity"/> elements.</summary>
+    public static int Size(int capacity, int fields) => (capacity + 3 * Vector<float>.Count) * fields;
+
+    public int Offset(int field) => field * Stride + Vector<float>.Count;
+
+    /// <summary>The per-thread heap buffer for scratch too large for the stack.</summary>
+    public static Span<float> Heap(int size)
+    {
+        var h = _heap;
+        if (h == null || h.Length < size) _heap = h = new float[size];
+        return h.AsSpan(0, size);
+    }
+}

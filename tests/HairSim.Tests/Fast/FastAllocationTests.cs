@@ -1,0 +1,95 @@
+using HairSim;
+
+namespace HairSim.Tests.Fast;
+
+[CollectionDefinition(nameof(AllocationCollection), DisableParallelization = true)]
+public class AllocationCollection { }
+
+/// <summary>
+/// A fast step allocates nothing once warm: measured on the calling thread for the sequential dispatcher, and on
+/// every thread of the parallel dispatcher (the caller and its workers) for the parallel one. (Process-wide
+/// counts, GC.GetTotalAllocatedBytes, also see the test runner's own threads, so they are not used here.)
+/// </summary>
+[Collection(nameof(AllocationCollection))]
+public class FastAllocationTests
+{
+    [Theory]
+    [InlineData("straight")]
+    [InlineData("cut")]
+    [InlineData("bent")]
+    [InlineData("odd-lengths")]
+    [InlineData("pbd")]
+    [InlineData("all-colliders")]
+    public void SequentialStepAllocatesNothing(string scene)
+    {
+        var s = FastPathScenes.Build(scene, SolverPath.Fast);
+        var sim = new HairSimulation(s);
+        for (int f = 1; f <= 40; f++) sim.Step(1f / 60f, FastPathScenes.HeadAt(f));
+        long before = GC.GetAllocatedBytesForCurrentThread();
+        for (int f = 41; f <= 60; f++) sim.Step(1f / 60f, FastPathScenes.HeadAt(f));
+        Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - before);
+    }
+
+    [Theory]
+    [InlineData("straight")]
+    [InlineData("cut")]
+    [InlineData("bent")]
+    public void ParallelStepAllocatesNothingOnAnyThread(string scene)
+    {
+        var s = FastPathScenes.Build(scene, SolverPath.Fast);
+        const int threads = 2;
+        using var dispatcher = new ParallelDispatcher(threads);
+        var sim = new HairSimulation(s, dispatcher: dispatcher);
+        for (int f = 1; f <= 60; f++) sim.Step(1f / 60f, FastPathScenes.HeadAt(f));
+        var probe = new PerThreadAllocations(threads);
+        var before = new long[threads];
+        var ids = new int[threads];
+        probe.Take(dispatcher);
+        // Copies into arrays allocated beforehand: the caller thread allocates nothing between the two readings.
+        Array.Copy(probe.Bytes, before, threads);
+        Array.Copy(probe.ThreadIds, ids, threads);
+        for (int f = 61; f <= 80; f++) sim.Step(1f / 60f, FastPathScenes.HeadAt(f));
+        probe.Take(dispatcher);
+        Assert.Equal(threads, ids.Distinct().Count());
+        for (int t = 0; t < threads; t++)
+        {
+            int j = Array.IndexOf(probe.ThreadIds, ids[t]);
+            Assert.True(j >= 0, "the same threads took part");
+            Assert.True(probe.Bytes[j] - before[t] == 0, $"thread {ids[t]} (caller {Environment.CurrentManagedThreadId}) allocated {probe.Bytes[j] - before[t]} bytes over 20 frames");
+        }
+    }
+
+    /// <summary>
+    /// Reads GC.GetAllocatedBytesForCurrentThread on every thread of a dispatcher: one job per thread, each job
+    /// waiting until all have started, so no thread can take two. Reading allocates nothing.
+    /// </summary>
+    private sealed class PerThreadAllocations
+    {
+        public readonly long[] Bytes;
+        public readonly int[] ThreadIds;
+        private readonly Action<int> _job;
+        private int _started;
+
+        public PerThreadAllocations(int threads)
+        {
+            Bytes = new long[threads];
+            ThreadIds = new int[threads];
+            _job = Read;
+        }
+
+        public void Take(IThreadDispatcher d)
+        {
+            _started = 0;
+            d.Run(Bytes.Length, _job);
+        }
+
+        private void Read(int j)
+        {
+            Interlocked.Increment(ref _started);
+            long deadline = Environment.TickCount64 + 5000;
+            while (Volatile.Read(ref _started) < Bytes.Length && Environment.TickCount64 < deadline) Thread.SpinWait(50);
+            ThreadIds[j] = Environment.CurrentManagedThreadId;
+            Bytes[j] = GC.GetAllocatedBytesForCurrentThread();
+        }
+    }
+}

@@ -1,0 +1,30 @@
+using HairSim;
+using HairSim.Fast;
+
+namespace HairSim.Tests.Fast;
+
+public class FastPathDefaultTests
+{
+    [Fact]
+    public void DefaultSettingsBuildTheFastSystems()
+    {
+        var scene = GroomBuilder.BuildScene(new GroomSettings { SheetCount = 4, StrandsPerSheet = 4, ParticlesPerStrand = 8 });
+        Assert.Equal(SolverPath.Fast, scene.Settings.Path);
+        var sim = new HairSimulation(scene);
+        var types = sim.Pipeline.Systems.Select(s => s.GetType()).ToArray();
+        Assert.Equal(
+            [typeof(FastHeadFollowSystem), typeof(FastShapeMatchSystem), typeof(FastIntegrateSystem), typeof(FastLengthSystem), typeof(FastCollideSystem)],
+            types);
+    }
+
+    [Fact]
+    public void ReferencePathStaysAvailable()
+    {
+        var scene = GroomBuilder.BuildScene(new GroomSettings { SheetCount = 4, StrandsPerSheet = 4, ParticlesPerStrand = 8 },
+            new SimulationSettings { Path = SolverPath.Reference });
+        var sim = new HairSimulation(scene);
+        Assert.Equal(
+            [typeof(HeadFollowSystem), typeof(ShapeMatchSystem), typeof(IntegrateSystem), typeof(LengthSystem), typeof(CollideSystem)],
+            sim.Pipeline.Systems.Select(s => s.GetType()).ToArray());
+    }
+}

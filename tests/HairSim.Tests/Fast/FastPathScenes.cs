@@ -1,0 +1,175 @@
+using System.Numerics;
+using HairSim;
+
+namespace HairSim.Tests.Fast;
+
+/// <summary>Scenes for fast-vs-reference comparisons: one builder per case, each the same for both paths.</summary>
+internal static class FastPathScenes
+{
+    public static readonly string[] Names =
+    [
+        "straight", "cut", "bent", "short8", "odd-lengths", "sphere", "capsule", "rotated-ellipsoid", "all-colliders",
+        "literal", "length-none", "pbd", "global-shape", "speed-limit", "one-pin", "no-colliders",
+    ];
+
+    /// <summary>A small groom on the reference head with default settings, changed per case.</summary>
+    public static HairScene Build(string name, SolverPath path)
+    {
+        var g = new GroomSettings { SheetCount = 24, StrandsPerSheet = 6, ParticlesPerStrand = 16 };
+        var st = new SimulationSettings { Path = path };
+        switch (name)
+        {
+            case "short8": g.ParticlesPerStrand = 8; break;
+            case "literal": st.Mode = ShapeMatchMode.LiteralForce; st.Alpha = 400f; break;
+            case "length-none": st.Length = LengthMode.None; break;
+            case "pbd": st.Length = LengthMode.Pbd; st.LengthIterations = 3; break;
+            case "global-shape": st.GlobalShapeStiffness = 0.05f; break;
+            case "speed-limit": st.MaxSpeed = 0.3f; break;
+            case "one-pin": g.PinnedPerStrand = 1; break;
+        }
+        HairScene scene;
+        if (name == "odd-lengths") scene = OddLengths(st);
+        else scene = GroomBuilder.BuildScene(g, st);
+        var w = scene.World;
+        switch (name)
+        {
+            case "cut":
+                // Cuts leave 2 … 15 live particles per strand (a deterministic spread).
+                for (int s = 0; s < w.StrandCount; s++) w.StrandParticleCount[s] = 2 + (s * 7) % 14;
+                w.MarkEdited();
+                break;
+            case "bent":
+                Bend(w);
+                break;
+            case "sphere":
+                scene.ClearColliders();
+                scene.AddCollider(Collider.Sphere(new Vector3(0, 0.02f, 0), 0.1f));
+                break;
+            case "capsule":
+                scene.ClearColliders();
+                scene.AddCollider(Collider.Capsule(new Vector3(-0.06f, 0, 0), new Vector3(0.06f, 0.01f, 0.02f), 0.09f));
+                break;
+            case "rotated-ellipsoid":
+                scene.ClearColliders();
+                scene.AddCollider(Collider.Ellipsoid(new Vector3(0, 0.005f, 0), new Vector3(0.08f, 0.102f, 0.096f),
+                    Quaternion.CreateFromYawPitchRoll(0.3f, 0.2f, -0.1f)));
+                break;
+            case "all-colliders":
+                scene.AddCollider(Collider.Sphere(new Vector3(0, -0.12f, 0.05f), 0.06f));
+                scene.AddCollider(Collider.Capsule(new Vector3(0, -0.15f, -0.02f), new Vector3(0, -0.3f, -0.03f), 0.05f));
+                scene.AddCollider(Collider.Capsule(new Vector3(0.1f, -0.1f, 0), new Vector3(0.1f, -0.1f, 0), 0.04f));
+                break;
+            case "no-colliders":
+                scene.ClearColliders();
+                break;
+        }
+        return scene;
+    }
+
+    /// <summary>Strands of many capacities (2 … 33) and live counts, so every chunk and tail shape is hit.</summary>
+    private static HairScene OddLengths(SimulationSettings st)
+    {
+        int[] caps = [2, 3, 4, 5, 7, 8, 9, 10, 11, 12, 15, 16, 17, 23, 24, 25, 33];
+        int perSheet = 6;
+        var strands = new int[caps.Length * perSheet];
+        for (int i = 0; i < strands.Length; i++) strands[i] = caps[i % caps.Length];
+        var sheets = new int[caps.Length];
+        Array.Fill(sheets, perSheet);
+        var w = new HairWorld(sheets, strands);
+        for (int s = 0; s < w.StrandCount; s++)
+        {
+            int n = w.StrandCapacity[s];
+            var dir = Vector3.Normalize(new Vector3(MathF.Sin(s * 0.7f), 1.2f, MathF.Cos(s * 0.7f)));
+            var root = new Vector3(0.08f * dir.X, 0.1f * dir.Y, 0.095f * dir.Z) * 1.02f;
+            var pts = new Vector3[n];
+            for (int k = 0; k < n; k++) pts[k] = root + dir * (0.012f * k) + new Vector3(0, 0, 0.002f * MathF.Sin(k));
+            w.SetStrand(s, pts, pinned: Math.Min(2, n - 1), straightRestShape: s % 2 == 0);
+            if (n > 4 && s % 3 == 0) w.StrandParticleCount[s] = n - 2;
+        }
+        var scene = new HairScene(w, st);
+        scene.AddCollider(Collider.Ellipsoid(Vector3.Zero, new Vector3(0.078f, 0.1f, 0.095f)));
+        return scene;
+    }
+
+    /// <summary>Curls every strand's rest pose (a styled groom): rest shapes get ShapeBend ≠ 0.</summary>
+    private static void Bend(HairWorld w)
+    {
+        for (int s = 0; s < w.StrandCount; s++)
+        {
+            int n = w.StrandParticleCount[s], first = w.StrandFirst[s];
+            var root = w.GetRest(first);
+            var dir = Vector3.Normalize(w.GetRest(first + 1) - root);
+            var side = Vector3.Normalize(Vector3.Cross(dir, Vector3.UnitY + new Vector3(0.1f, 0, 0.2f)));
+            var pts = new Vector3[n];
+            float step = 0.016f;
+            for (int k = 0; k < n; k++)
+            {
+                float a = 0.5f * k;
+                pts[k] = root + dir * (step * k) + side * (0.01f * (1 - MathF.Cos(a)));
+            }
+            w.SetStrand(s, pts, pinned: 2);
+        }
+    }
+
+    public const int TeleportFrame = 6;
+
+    /// <summary>A head shaking and bobbing; at <see cref="TeleportFrame"/> it jumps far enough to count as a teleport.</summary>
+    public static RigidTransform HeadAt(int frame, bool teleport = true)
+    {
+        float t = frame / 60f;
+        var shift = teleport && frame >= TeleportFrame ? new Vector3(0.8f, 0, 0) : Vector3.Zero;
+        return new RigidTransform(shift + new Vector3(0, 0.03f * MathF.Sin(2 * MathF.PI * 2f * t), 0),
+            Quaternion.CreateFromAxisAngle(Vector3.UnitY, 0.7f * MathF.Sin(2 * MathF.PI * 1.5f * t)));
+    }
+
+    public static float MaxPositionDifference(HairWorld a, HairWorld b)
+    {
+        float max = 0f;
+        for (int s = 0; s < a.StrandCount; s++)
+        {
+            int first = a.StrandFirst[s];
+            for (int i = first; i < first + a.StrandParticleCount[s]; i++)
+                max = MathF.Max(max, Vector3.Distance(a.GetPosition(i), b.GetPosition(i)));
+        }
+        return max;
+    }
+
+    /// <summary>Root-mean-square position difference over live particles.</summary>
+    public static double RmsPositionDifference(HairWorld a, HairWorld b)
+    {
+        double sum = 0;
+        int count = 0;
+        for (int s = 0; s < a.StrandCount; s++)
+        {
+            int first = a.StrandFirst[s];
+            for (int i = first; i < first + a.StrandParticleCount[s]; i++, count++)
+                sum += Vector3.DistanceSquared(a.GetPosition(i), b.GetPosition(i));
+        }
+        return Math.Sqrt(sum / Math.Max(1, count));
+    }
+
+    /// <summary>Mean position of the live particles (where the hair mass is).</summary>
+    public static Vector3 Centroid(HairWorld w)
+    {
+        var sum = Vector3.Zero;
+        int count = 0;
+        for (int s = 0; s < w.StrandCount; s++)
+        {
+            int first = w.StrandFirst[s];
+            for (int i = first; i < first + w.StrandParticleCount[s]; i++, count++) sum += w.GetPosition(i);
+        }
+        return sum / Math.Max(1, count);
+    }
+
+    public static float MaxVelocityDifference(HairWorld a, HairWorld b)
+    {
+        float max = 0f;
+        for (int s = 0; s < a.StrandCount; s++)
+        {
+            int first = a.StrandFirst[s];
+            for (int i = first; i < first + a.StrandParticleCount[s]; i++)
+                max = MathF.Max(max, Vector3.Distance(a.GetVelocity(i), b.GetVelocity(i)));
+        }
+        return max;
+    }
+}
