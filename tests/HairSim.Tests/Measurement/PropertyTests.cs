@@ -60,8 +60,8 @@ public class PropertyTests
                 headTravel += Vector3.Distance(head.Position, w.Head.Position) + RigidTransform.Delta(w.Head, head).Angle * reach;
                 sim.Step(dt, head);
                 var m = WorldMetrics.Measure(scene);
-                if (m.NonFinite != 0) throw new Exception($"frame {f}: {m.NonFinite} non-finite values");
-                if (m.ParticlesInside != 0) throw new Exception($"frame {f}: {m.ParticlesInside} particles inside the head ({m.MaxPenetration * 1000:F3} mm)");
+                if (m.NonFinite != 0) Assert.Fail($"frame {f}: {m.NonFinite} non-finite values");
+                if (m.ParticlesInside != 0) Assert.Fail($"frame {f}: {m.ParticlesInside} particles inside the head ({m.MaxPenetration * 1000:F3} mm)");
                 // The speed limit bounds how far free neighbours drift apart, pinned roots move with the head, and a
                 // push-out adds at most the head's size.
                 double bound = 2 * st.MaxSpeed * (f + 1) * dt + headTravel + 0.25;
@@ -70,14 +70,14 @@ public class PropertyTests
                     {
                         int i = w.StrandFirst[s] + k;
                         double l = Vector3.Distance(w.GetPosition(i), w.GetPosition(i - 1));
-                        if (l > w.RestLength[i] + bound) throw new Exception($"frame {f}: edge {k} of strand {s} is {l:F3} m (rest {w.RestLength[i]:F3} m)");
+                        if (l > w.RestLength[i] + bound) Assert.Fail($"frame {f}: edge {k} of strand {s} is {l:F3} m (rest {w.RestLength[i]:F3} m)");
                         // Follow-the-leader keeps every edge within the stability map's 50 % under shakes and spins. Exempt:
                         // a start inside the head (the first push-out scatters particles over the surface before the strand
                         // pulls together), the first frame after a collapsed start (the strand unfolds along its rest
                         // direction, partly into the scalp, and is pushed out) and random jumps (a head moving up to 0.5 m per frame at several hundred Hz pushes
                         // particles out by more than a short edge; the head-travel guard only limits it to 2 cm a substep).
                         if (st.Length == LengthMode.FollowTheLeader && c.Start != 3 && (c.Start == 0 || f > 0) && c.Motion != 3 && l > 1.5 * w.RestLength[i])
-                            throw new Exception($"frame {f}: edge {k} of strand {s} stretched {l / w.RestLength[i] - 1:P0} with follow-the-leader");
+                            Assert.Fail($"frame {f}: edge {k} of strand {s} stretched {l / w.RestLength[i] - 1:P0} with follow-the-leader");
                     }
             }
         }, iter: 2000, threads: 2);
