@@ -103,13 +103,13 @@ public static class BenchCommand
         var sim = new HairSimulation(scene, dispatcher: dispatcher);
         float dt = 1f / 60f;
         int f = 0;
-        for (; f < warmup; f++) sim.Step(dt, RunCommand.ShakePose((f + 1) * dt));
+        for (; f < warmup; f++) sim.Step(dt, HairSim.Measurement.HeadMotion.Shake((f + 1) * dt));
         var times = new double[frames];
         var sw = new Stopwatch();
         long bytes = GC.GetTotalAllocatedBytes(true);
         for (int i = 0; i < frames; i++, f++)
         {
-            var head = RunCommand.ShakePose((f + 1) * dt);
+            var head = HairSim.Measurement.HeadMotion.Shake((f + 1) * dt);
             sw.Restart();
             sim.Step(dt, head);
             times[i] = sw.Elapsed.TotalMilliseconds;
@@ -127,12 +127,12 @@ public static class BenchCommand
         // A moving state: one second of the full simulation with a shaking head, then the system alone from there.
         var warm = new HairSimulation(scene, dispatcher: dispatcher);
         float dt = 1f / 60f;
-        for (int f = 0; f < 60; f++) warm.Step(dt, RunCommand.ShakePose((f + 1) * dt));
+        for (int f = 0; f < 60; f++) warm.Step(dt, HairSim.Measurement.HeadMotion.Shake((f + 1) * dt));
         var snapshot = scene.World.Clone();
         var only = new PipelineBuilder();
         foreach (var fac in PipelineBuilder.CreateDefault().Factories) if (fac.Name == system) only.Add(fac);
         var pipeline = only.Build(scene, dispatcher);
-        var head = RunCommand.ShakePose(61 * dt);
+        var head = HairSim.Measurement.HeadMotion.Shake(61 * dt);
         for (int i = 0; i < 3; i++) { snapshot.CopyTo(scene.World); pipeline.Step(dt, head); }
         var times = new double[frames];
         var sw = new Stopwatch();

@@ -1,6 +1,7 @@
 using System.Diagnostics;
 using System.Globalization;
 using HairSim;
+using HairSim.Measurement;
 
 namespace HairSim.Cli;
 
@@ -47,7 +48,7 @@ public static class RunCommand
         var sw = new Stopwatch();
         for (int f = 0; f < frames; f++)
         {
-            var head = shake ? ShakePose((f + 1) * dt) : w.Head;
+            var head = shake ? HeadMotion.Shake((f + 1) * dt) : w.Head;
             sw.Restart();
             sim.Step(dt, head);
             times[f] = sw.Elapsed.TotalMilliseconds;
@@ -62,13 +63,5 @@ public static class RunCommand
         Console.WriteLine(string.Create(CultureInfo.InvariantCulture,
             $"after {frames * dt:F2} s: length / rest length = {m.LengthRatio:F5}, max edge stretch = {m.MaxEdgeStretch * 100:F3} %, max penetration = {m.MaxPenetration * 1000:F3} mm ({m.ParticlesInside} particles inside), non-finite values = {m.NonFinite}"));
         return m.NonFinite == 0 ? 0 : 3;
-    }
-
-    /// <summary>A head shaking "no" (±40° at 1.5 Hz) while bobbing, as a game character or AR head would.</summary>
-    public static RigidTransform ShakePose(float t)
-    {
-        float yaw = 0.7f * MathF.Sin(2 * MathF.PI * 1.5f * t);
-        return new RigidTransform(new System.Numerics.Vector3(0, 0.03f * MathF.Sin(2 * MathF.PI * 2f * t), 0),
-            System.Numerics.Quaternion.CreateFromAxisAngle(System.Numerics.Vector3.UnitY, yaw));
     }
 }
