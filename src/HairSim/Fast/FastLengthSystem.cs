@@ -155,13 +155,7 @@ public sealed class FastLengthSystem : IHairSystem
         }
     }
 
-    /// <summary>Sweep state of one SIMD vector of strands: the corrected previous particle and its correction.</summary>
-    private struct Chain
-    {
-        public Vector<float> Px, Py, Pz, Dx, Dy, Dz;
-        public Vector<int> Free;
-    }
-
+    /// <summary>Per-sweep constants and tile offsets.</summary>
     private readonly struct FtlParams
     {
         public readonly Vector<float> InvH, Damp, Eps2;
@@ -175,30 +169,105 @@ public sealed class FastLengthSystem : IHairSystem
         }
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    /// <summary>
+    /// The sweep, root to tip (written for Halves = 2: two vectors of strands, each carrying a chain — the
+    /// corrected previous particle, its correction, whether it is free — from row to row). The sweep is
+    /// latency-bound, so the chains are plain locals that stay in registers: nothing in this loop takes their
+    /// address or calls out (a call would make the JIT spill them around it on every row). A row where some lane's
+    /// neighbours coincide (rare) hands the rest of the sweep to <see cref="SweepWithFallback"/>.
+    /// </summary>
     private static void FollowTheLeader(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, int rows, float h, float damping, in PoseLanes head)
     {
         int width = Vector<float>.Count;
         ref float d = ref t.Data[0];
         var p = new FtlParams(t, h, damping);
-        Span<Chain> chains = stackalloc Chain[Halves];
-        for (int c = 0; c < Halves; c++)
-            chains[c] = new Chain { Px = Simd.Ld(ref d, p.Ox + c * width), Py = Simd.Ld(ref d, p.Oy + c * width), Pz = Simd.Ld(ref d, p.Oz + c * width) };
-        for (int k = 1; k < rows; k++)
+        var ax = Simd.Ld(ref d, p.Ox); var ay = Simd.Ld(ref d, p.Oy); var az = Simd.Ld(ref d, p.Oz);
+        var bx = Simd.Ld(ref d, p.Ox + width); var by = Simd.Ld(ref d, p.Oy + width); var bz = Simd.Ld(ref d, p.Oz + width);
+        Vector<float> adx = default, ady = default, adz = default, bdx = default, bdy = default, bdz = default;
+        Vector<int> aFree = default, bFree = default;
+        int k = 1;
+        for (; k < rows; k++)
         {
-            // Independent chains per row: their sqrt/divide latencies overlap.
-            for (int c = 0; c < Halves; c++) Step(w, ref d, in p, ref chains[c], firsts, k, c * width, in head);
+            int ra = k * p.Lanes, rb = ra + width;
+            var xa = Simd.Ld(ref d, p.Ox + ra); var ya = Simd.Ld(ref d, p.Oy + ra); var za = Simd.Ld(ref d, p.Oz + ra);
+            var xb = Simd.Ld(ref d, p.Ox + rb); var yb = Simd.Ld(ref d, p.Oy + rb); var zb = Simd.Ld(ref d, p.Oz + rb);
+            var freeA = ~Vector.Equals(Simd.Ld(ref d, p.Om + ra), Vector<float>.Zero);
+            var freeB = ~Vector.Equals(Simd.Ld(ref d, p.Om + rb), Vector<float>.Zero);
+            var exa = xa - ax; var eya = ya - ay; var eza = za - az;
+            var exb = xb - bx; var eyb = yb - by; var ezb = zb - bz;
+            var len2a = exa * exa + eya * eya + eza * eza;
+            var len2b = exb * exb + eyb * eyb + ezb * ezb;
+            var degenerate = (freeA & Vector.LessThan(len2a, p.Eps2)) | (freeB & Vector.LessThan(len2b, p.Eps2));
+            if (!Vector.EqualsAll(degenerate, Vector<int>.Zero)) break;
+            // The two chains' sqrt latencies overlap.
+            Advance(ref d, in p, k, ra, xa, ya, za, exa, eya, eza, len2a, freeA, ref ax, ref ay, ref az, ref adx, ref ady, ref adz, ref aFree);
+            Advance(ref d, in p, k, rb, xb, yb, zb, exb, eyb, ezb, len2b, freeB, ref bx, ref by, ref bz, ref bdx, ref bdy, ref bdz, ref bFree);
+        }
+        if (k < rows)
+        {
+            SweepWithFallback(w, t, firsts, rows, k, h, damping, in head,
+                new Chain { Px = ax, Py = ay, Pz = az, Dx = adx, Dy = ady, Dz = adz, Free = aFree },
+                new Chain { Px = bx, Py = by, Pz = bz, Dx = bdx, Dy = bdy, Dz = bdz, Free = bFree });
+            return;
         }
         if (rows >= 2)
         {
             int r = (rows - 1) * p.Lanes;
-            for (int c = 0; c < Halves; c++)
-                Kick(ref d, r + c * width, p.Ovx, p.Ovy, p.Ovz, chains[c].Free, chains[c].Dx, chains[c].Dy, chains[c].Dz, p.InvH);
+            Kick(ref d, r, p.Ovx, p.Ovy, p.Ovz, aFree, adx, ady, adz, p.InvH);
+            Kick(ref d, r + width, p.Ovx, p.Ovy, p.Ovz, bFree, bdx, bdy, bdz, p.InvH);
         }
     }
 
-    /// <summary>Row k of one vector of strands: put particle k at its rest distance from k−1, then kick k−1's velocity.</summary>
+    /// <summary>
+    /// Row k of one vector of strands whose neighbours do not coincide: put particle k at its rest distance from
+    /// k−1, then kick k−1's velocity. (cx, cy, cz) is the corrected particle k−1 on entry and particle k on return;
+    /// (cdx, cdy, cdz) and cFree its correction and free mask.
+    /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Advance(ref float d, in FtlParams p, int k, int r, Vector<float> x, Vector<float> y, Vector<float> z,
+        Vector<float> ex, Vector<float> ey, Vector<float> ez, Vector<float> len2, Vector<int> free,
+        ref Vector<float> cx, ref Vector<float> cy, ref Vector<float> cz, ref Vector<float> cdx, ref Vector<float> cdy, ref Vector<float> cdz,
+        ref Vector<int> cFree)
+    {
+        // Correction d = leader + e·ratio − x. With e = x − leader that is e·(ratio − 1), which keeps float
+        // rounding at segment scale (the reference computes it in double).
+        var corr = Simd.Ld(ref d, p.Ol + r) * Simd.InvSqrt(Simd.Sel(free, len2, Vector<float>.One)) - Vector<float>.One;
+        corr = Simd.Sel(free, corr, Vector<float>.Zero);
+        var dx = ex * corr; var dy = ey * corr; var dz = ez * corr;
+        var tx = x + dx; var ty = y + dy; var tz = z + dz;
+        Simd.St(ref d, p.Ox + r, tx); Simd.St(ref d, p.Oy + r, ty); Simd.St(ref d, p.Oz + r, tz);
+        // Velocity of particle k−1 now that its successor's correction is known: v += (d[k−1] − s·d[k]) / h.
+        if (k >= 2) Kick(ref d, r - p.Lanes, p.Ovx, p.Ovy, p.Ovz, cFree, cdx - p.Damp * dx, cdy - p.Damp * dy, cdz - p.Damp * dz, p.InvH);
+        cx = tx; cy = ty; cz = tz;
+        cdx = dx; cdy = dy; cdz = dz; cFree = free;
+    }
+
+    /// <summary>Sweep state of one SIMD vector of strands: the corrected previous particle and its correction.</summary>
+    private struct Chain
+    {
+        public Vector<float> Px, Py, Pz, Dx, Dy, Dz;
+        public Vector<int> Free;
+    }
+
+    /// <summary>The rest of a sweep from row <paramref name="k0"/>, when some neighbours coincide: the general row step with the reference's fallback axis.</summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    private static void SweepWithFallback(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, int rows, int k0, float h, float damping,
+        in PoseLanes head, Chain a, Chain b)
+    {
+        int width = Vector<float>.Count;
+        ref float d = ref t.Data[0];
+        var p = new FtlParams(t, h, damping);
+        for (int k = k0; k < rows; k++)
+        {
+            Step(w, ref d, in p, ref a, firsts, k, 0, in head);
+            Step(w, ref d, in p, ref b, firsts, k, width, in head);
+        }
+        int r = (rows - 1) * p.Lanes;
+        Kick(ref d, r, p.Ovx, p.Ovy, p.Ovz, a.Free, a.Dx, a.Dy, a.Dz, p.InvH);
+        Kick(ref d, r + width, p.Ovx, p.Ovy, p.Ovz, b.Free, b.Dx, b.Dy, b.Dz, p.InvH);
+    }
+
+    /// <summary>Row k of one vector of strands, any lanes possibly degenerate (see <see cref="Advance"/> for the common case).</summary>
     private static void Step(HairWorld w, ref float d, in FtlParams p, ref Chain c, ReadOnlySpan<int> firsts, int k, int half, in PoseLanes head)
     {
         int r = k * p.Lanes + half;
@@ -207,30 +276,22 @@ public sealed class FastLengthSystem : IHairSystem
         var ex = x - c.Px; var ey = y - c.Py; var ez = z - c.Pz;
         var len2 = ex * ex + ey * ey + ez * ez;
         var degenerate = free & Vector.LessThan(len2, p.Eps2);
-        Vector<float> dx, dy, dz;
         if (Vector.EqualsAll(degenerate, Vector<int>.Zero))
         {
-            // Correction d = leader + e·ratio − x. With e = x − leader that is e·(ratio − 1), which keeps float
-            // rounding at segment scale (the reference computes it in double).
-            var corr = Simd.Ld(ref d, p.Ol + r) * Simd.InvSqrt(Simd.Sel(free, len2, Vector<float>.One)) - Vector<float>.One;
-            corr = Simd.Sel(free, corr, Vector<float>.Zero);
-            dx = ex * corr; dy = ey * corr; dz = ez * corr;
+            Advance(ref d, in p, k, r, x, y, z, ex, ey, ez, len2, free, ref c.Px, ref c.Py, ref c.Pz, ref c.Dx, ref c.Dy, ref c.Dz, ref c.Free);
+            return;
         }
-        else
-        {
-            // Coincident neighbours: the edge takes the reference's fallback axis; d = leader + axis·ratio − x.
-            var len = Vector.SquareRoot(len2);
-            var ox = ex; var oy = ey; var oz = ez;
-            RestAxis(w, firsts.Slice(half), k, degenerate, in head, ref ex, ref ey, ref ez, ref len);
-            var ratio = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One);
-            var corr = ratio - Vector<float>.One;
-            dx = Simd.Sel(free, Simd.Sel(degenerate, (c.Px - x) + ex * ratio, ox * corr), Vector<float>.Zero);
-            dy = Simd.Sel(free, Simd.Sel(degenerate, (c.Py - y) + ey * ratio, oy * corr), Vector<float>.Zero);
-            dz = Simd.Sel(free, Simd.Sel(degenerate, (c.Pz - z) + ez * ratio, oz * corr), Vector<float>.Zero);
-        }
+        // Coincident neighbours: the edge takes the reference's fallback axis; d = leader + axis·ratio − x.
+        var len = Vector.SquareRoot(len2);
+        var ox = ex; var oy = ey; var oz = ez;
+        RestAxis(w, firsts.Slice(half), k, degenerate, in head, ref ex, ref ey, ref ez, ref len);
+        var ratio = Simd.Ld(ref d, p.Ol + r) / Simd.Sel(free, len, Vector<float>.One);
+        var corr = ratio - Vector<float>.One;
+        var dx = Simd.Sel(free, Simd.Sel(degenerate, (c.Px - x) + ex * ratio, ox * corr), Vector<float>.Zero);
+        var dy = Simd.Sel(free, Simd.Sel(degenerate, (c.Py - y) + ey * ratio, oy * corr), Vector<float>.Zero);
+        var dz = Simd.Sel(free, Simd.Sel(degenerate, (c.Pz - z) + ez * ratio, oz * corr), Vector<float>.Zero);
         var tx = x + dx; var ty = y + dy; var tz = z + dz;
         Simd.St(ref d, p.Ox + r, tx); Simd.St(ref d, p.Oy + r, ty); Simd.St(ref d, p.Oz + r, tz);
-        // Velocity of particle k−1 now that its successor's correction is known: v += (d[k−1] − s·d[k]) / h.
         if (k >= 2) Kick(ref d, r - p.Lanes, p.Ovx, p.Ovy, p.Ovz, c.Free, c.Dx - p.Damp * dx, c.Dy - p.Damp * dy, c.Dz - p.Damp * dz, p.InvH);
         c.Px = tx; c.Py = ty; c.Pz = tz;
         c.Dx = dx; c.Dy = dy; c.Dz = dz; c.Free = free;

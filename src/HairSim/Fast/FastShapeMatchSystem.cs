@@ -34,6 +34,8 @@ public sealed class FastShapeMatchSystem : IHairSystem
     {
         public readonly Vector<float> F, FHalf, FThird, BetaOverH, Third, LenEps2;
         public readonly Vector<int> Two, Three;
+        /// <summary><see cref="Simd.Lane"/>, copied once per run: Run is compiled before tiering, where each read of the static would cost a helper call.</summary>
+        public readonly Vector<int> Lane;
         /// <summary>α/h divided by the goal count of the first and last Width particles of a long strand (1, 2, 3, … / …, 3, 2, 1).</summary>
         public readonly Vector<float> FirstF, LastF;
         public readonly float Alpha, Beta;
@@ -45,7 +47,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
             Alpha = alpha; Beta = beta;
             float f = literal ? h * alpha : alpha / h;
             F = new(f); FHalf = new(f / 2f); FThird = new(f / 3f);
-            Two = new(2); Three = new(3);
+            Two = new(2); Three = new(3); Lane = Simd.Lane;
             int width = Vector<float>.Count;
             Span<float> first = stackalloc float[width], last = stackalloc float[width];
             for (int l = 0; l < width; l++)
@@ -90,29 +92,37 @@ public sealed class FastShapeMatchSystem : IHairSystem
                 };
                 Strand(ref v, w, first, n, padded: false, in p, scratch);
             }
-            else
-            {
-                // Short strand: work on a padded copy, write back only its live velocities.
-                Copy(w.PosX, first, n, scratch, CPx); Copy(w.PosY, first, n, scratch, CPy); Copy(w.PosZ, first, n, scratch, CPz);
-                Copy(w.VelX, first, n, scratch, CVx); Copy(w.VelY, first, n, scratch, CVy); Copy(w.VelZ, first, n, scratch, CVz);
-                Copy(w.InvMass, first, n, scratch, CM);
-                Copy(w.RestX, first, n, scratch, CRx); Copy(w.RestY, first, n, scratch, CRy); Copy(w.RestZ, first, n, scratch, CRz);
-                Copy(w.ShapePrev, first, n, scratch, CSp); Copy(w.ShapeMid, first, n, scratch, CSm);
-                Copy(w.ShapeNext, first, n, scratch, CSn); Copy(w.ShapeBend, first, n, scratch, CSb);
-                var v = new StrandView
-                {
-                    Px = ref d[scratch.Offset(CPx)], Py = ref d[scratch.Offset(CPy)], Pz = ref d[scratch.Offset(CPz)],
-                    Vx = ref d[scratch.Offset(CVx)], Vy = ref d[scratch.Offset(CVy)], Vz = ref d[scratch.Offset(CVz)],
-                    M = ref d[scratch.Offset(CM)],
-                    Rx = ref d[scratch.Offset(CRx)], Ry = ref d[scratch.Offset(CRy)], Rz = ref d[scratch.Offset(CRz)],
-                    Sp = ref d[scratch.Offset(CSp)], Sm = ref d[scratch.Offset(CSm)], Sn = ref d[scratch.Offset(CSn)], Sb = ref d[scratch.Offset(CSb)],
-                };
-                Strand(ref v, w, first, n, padded: true, in p, scratch);
-                d.Slice(scratch.Offset(CVx), n).CopyTo(w.VelX.AsSpan(first, n));
-                d.Slice(scratch.Offset(CVy), n).CopyTo(w.VelY.AsSpan(first, n));
-                d.Slice(scratch.Offset(CVz), n).CopyTo(w.VelZ.AsSpan(first, n));
-            }
+            else ShortStrand(w, first, n, in p, scratch);
         }
+    }
+
+    /// <summary>
+    /// A strand shorter than Width + 2: work on a padded copy, write back only its live velocities. Kept out of
+    /// <see cref="Run"/> (not inlined) so the JIT's inlining budget for Run goes to the long-strand path, whose
+    /// SIMD helpers must all be inlined.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    private static void ShortStrand(HairWorld w, int first, int n, in Params p, scoped StrandScratch scratch)
+    {
+        Span<float> d = scratch.Data;
+        Copy(w.PosX, first, n, scratch, CPx); Copy(w.PosY, first, n, scratch, CPy); Copy(w.PosZ, first, n, scratch, CPz);
+        Copy(w.VelX, first, n, scratch, CVx); Copy(w.VelY, first, n, scratch, CVy); Copy(w.VelZ, first, n, scratch, CVz);
+        Copy(w.InvMass, first, n, scratch, CM);
+        Copy(w.RestX, first, n, scratch, CRx); Copy(w.RestY, first, n, scratch, CRy); Copy(w.RestZ, first, n, scratch, CRz);
+        Copy(w.ShapePrev, first, n, scratch, CSp); Copy(w.ShapeMid, first, n, scratch, CSm);
+        Copy(w.ShapeNext, first, n, scratch, CSn); Copy(w.ShapeBend, first, n, scratch, CSb);
+        var v = new StrandView
+        {
+            Px = ref d[scratch.Offset(CPx)], Py = ref d[scratch.Offset(CPy)], Pz = ref d[scratch.Offset(CPz)],
+            Vx = ref d[scratch.Offset(CVx)], Vy = ref d[scratch.Offset(CVy)], Vz = ref d[scratch.Offset(CVz)],
+            M = ref d[scratch.Offset(CM)],
+            Rx = ref d[scratch.Offset(CRx)], Ry = ref d[scratch.Offset(CRy)], Rz = ref d[scratch.Offset(CRz)],
+            Sp = ref d[scratch.Offset(CSp)], Sm = ref d[scratch.Offset(CSm)], Sn = ref d[scratch.Offset(CSn)], Sb = ref d[scratch.Offset(CSb)],
+        };
+        Strand(ref v, w, first, n, padded: true, in p, scratch);
+        d.Slice(scratch.Offset(CVx), n).CopyTo(w.VelX.AsSpan(first, n));
+        d.Slice(scratch.Offset(CVy), n).CopyTo(w.VelY.AsSpan(first, n));
+        d.Slice(scratch.Offset(CVz), n).CopyTo(w.VelZ.AsSpan(first, n));
     }
 
     private static void Copy(float[] src, int first, int n, scoped StrandScratch scratch, int field)
@@ -123,9 +133,9 @@ public sealed class FastShapeMatchSystem : IHairSystem
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static Vector<int> ValidTriple(int k0, int n)
+    private static Vector<int> ValidTriple(Vector<int> lane, int k0, int n)
     {
-        var k = Simd.Lane + new Vector<int>(k0);
+        var k = lane + new Vector<int>(k0);
         return Vector.GreaterThanOrEqual(k, Vector<int>.One) & Vector.LessThanOrEqual(k, new Vector<int>(n - 2));
     }
 
@@ -170,12 +180,17 @@ public sealed class FastShapeMatchSystem : IHairSystem
             // Overlapping last chunk: lanes before j0 were already updated and are masked out.
             if (j0 < n) ParticlesAlongStrand(ref v, n - width, j0, n, in p, scratch, ref g);
         }
-        else
-        {
-            int j0 = 0;
-            for (; j0 + width <= n; j0 += width) Particles(ref v, j0, j0, n, in p, scratch, ref g);
-            if (j0 < n) Particles(ref v, n - width, j0, n, in p, scratch, ref g);
-        }
+        else GlobalOnly(ref v, n, in p, scratch, ref g);
+    }
+
+    /// <summary>Velocities of a long strand when only the global stiffness pulls (α = 0); not inlined, like <see cref="ShortStrand"/>.</summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    private static void GlobalOnly(ref StrandView v, int n, in Params p, scoped StrandScratch scratch, ref float g)
+    {
+        int width = Vector<float>.Count;
+        int j0 = 0;
+        for (; j0 + width <= n; j0 += width) Particles(ref v, j0, j0, n, in p, scratch, ref g);
+        if (j0 < n) Particles(ref v, n - width, j0, n, in p, scratch, ref g);
     }
 
     /// <summary>
@@ -199,13 +214,14 @@ public sealed class FastShapeMatchSystem : IHairSystem
             dvx += p.BetaOverH * (gx - x); dvy += p.BetaOverH * (gy - y); dvz += p.BetaOverH * (gz - z);
         }
         var apply = ~Vector.Equals(Simd.Ld(ref v.M, j0), Vector<float>.Zero);
-        if (fresh != j0) apply &= Vector.GreaterThanOrEqual(Simd.Lane + new Vector<int>(j0), new Vector<int>(fresh));
+        if (fresh != j0) apply &= Vector.GreaterThanOrEqual(p.Lane + new Vector<int>(j0), new Vector<int>(fresh));
         Simd.St(ref v.Vx, j0, Simd.Sel(apply, Simd.Ld(ref v.Vx, j0) + dvx, Simd.Ld(ref v.Vx, j0)));
         Simd.St(ref v.Vy, j0, Simd.Sel(apply, Simd.Ld(ref v.Vy, j0) + dvy, Simd.Ld(ref v.Vy, j0)));
         Simd.St(ref v.Vz, j0, Simd.Sel(apply, Simd.Ld(ref v.Vz, j0) + dvz, Simd.Ld(ref v.Vz, j0)));
     }
 
     /// <summary>Does any triple of the strand (1 … n − 2) have a bent rest shape?</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static bool HasBend(ref float bend, int n)
     {
         int width = Vector<float>.Count;
@@ -298,7 +314,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Triples(ref StrandView v, int k0, int n, bool bent, in Params p, scoped StrandScratch scratch, ref float g)
     {
-        var valid = ValidTriple(k0, n);
+        var valid = ValidTriple(p.Lane, k0, n);
         var bx = Simd.Ld(ref v.Px, k0); var by = Simd.Ld(ref v.Py, k0); var bz = Simd.Ld(ref v.Pz, k0);
         var ax = Simd.Ld(ref v.Px, k0 - 1) - bx; var ay = Simd.Ld(ref v.Py, k0 - 1) - by; var az = Simd.Ld(ref v.Pz, k0 - 1) - bz;
         var cx = Simd.Ld(ref v.Px, k0 + 1) - bx; var cy = Simd.Ld(ref v.Py, k0 + 1) - by; var cz = Simd.Ld(ref v.Pz, k0 + 1) - bz;
@@ -372,9 +388,9 @@ public sealed class FastShapeMatchSystem : IHairSystem
         var dvx = Vector<float>.Zero; var dvy = Vector<float>.Zero; var dvz = Vector<float>.Zero;
         if (p.Alpha > 0f && n >= 3)
         {
-            var fromNext = ValidTriple(j0 + 1, n); // triple j+1 gave particle j its "prev" goal
-            var fromSelf = ValidTriple(j0, n);
-            var fromPrev = ValidTriple(j0 - 1, n);
+            var fromNext = ValidTriple(p.Lane, j0 + 1, n); // triple j+1 gave particle j its "prev" goal
+            var fromSelf = ValidTriple(p.Lane, j0, n);
+            var fromPrev = ValidTriple(p.Lane, j0 - 1, n);
             int o = scratch.Offset(0) + j0, st = scratch.Stride;
             var sx = Simd.Sel(fromNext, Simd.Ld(ref g, o + 1 + GPx * st), default) + Simd.Sel(fromSelf, Simd.Ld(ref g, o + GMx * st), default) + Simd.Sel(fromPrev, Simd.Ld(ref g, o - 1 + GNx * st), default);
             var sy = Simd.Sel(fromNext, Simd.Ld(ref g, o + 1 + GPy * st), default) + Simd.Sel(fromSelf, Simd.Ld(ref g, o + GMy * st), default) + Simd.Sel(fromPrev, Simd.Ld(ref g, o - 1 + GNy * st), default);
@@ -393,7 +409,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
             dvx += p.BetaOverH * (gx - x); dvy += p.BetaOverH * (gy - y); dvz += p.BetaOverH * (gz - z);
         }
         var apply = ~Vector.Equals(Simd.Ld(ref v.M, j0), Vector<float>.Zero)
-                    & Vector.GreaterThanOrEqual(Simd.Lane + new Vector<int>(j0), new Vector<int>(fresh));
+                    & Vector.GreaterThanOrEqual(p.Lane + new Vector<int>(j0), new Vector<int>(fresh));
         Simd.St(ref v.Vx, j0, Simd.Sel(apply, Simd.Ld(ref v.Vx, j0) + dvx, Simd.Ld(ref v.Vx, j0)));
         Simd.St(ref v.Vy, j0, Simd.Sel(apply, Simd.Ld(ref v.Vy, j0) + dvy, Simd.Ld(ref v.Vy, j0)));
         Simd.St(ref v.Vz, j0, Simd.Sel(apply, Simd.Ld(ref v.Vz, j0) + dvz, Simd.Ld(ref v.Vz, j0)));
