@@ -77,19 +77,18 @@ public sealed class FastLengthSystem : IHairSystem
         {
             int first = firsts[0];
             TransposeIn(w.PosX, first, rows, t, TX); TransposeIn(w.PosY, first, rows, t, TY); TransposeIn(w.PosZ, first, rows, t, TZ);
-            TransposeIn(w.VelX, first, rows, t, TVx); TransposeIn(w.VelY, first, rows, t, TVy); TransposeIn(w.VelZ, first, rows, t, TVz);
             TransposeIn(w.InvMass, first, rows, t, TM); TransposeIn(w.RestLength, first, rows, t, TL);
+            ClearRootKick(t);
             return;
         }
-        int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
-            om = t.Offset(TM), ol = t.Offset(TL);
+        int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), om = t.Offset(TM), ol = t.Offset(TL);
+        ClearRootKick(t);
         // Masked lanes: InvMass 0 (never moved) at a finite position; their results are never written back.
         d.Slice(om, rows * width).Clear();
         d.Slice(ox, rows * width).Clear(); d.Slice(oy, rows * width).Clear(); d.Slice(oz, rows * width).Clear();
         d.Slice(ol, rows * width).Clear();
         ref float dd = ref d[0];
         ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
-        ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
         ref float m = ref Simd.At(w.InvMass, 0), l0 = ref Simd.At(w.RestLength, 0);
         for (int l = 0; l < width; l++)
         {
@@ -98,7 +97,6 @@ public sealed class FastLengthSystem : IHairSystem
             {
                 int i = first + k, r = k * width + l;
                 Unsafe.Add(ref dd, ox + r) = Unsafe.Add(ref px, i); Unsafe.Add(ref dd, oy + r) = Unsafe.Add(ref py, i); Unsafe.Add(ref dd, oz + r) = Unsafe.Add(ref pz, i);
-                Unsafe.Add(ref dd, ovx + r) = Unsafe.Add(ref vx, i); Unsafe.Add(ref dd, ovy + r) = Unsafe.Add(ref vy, i); Unsafe.Add(ref dd, ovz + r) = Unsafe.Add(ref vz, i);
                 Unsafe.Add(ref dd, om + r) = Unsafe.Add(ref m, i); Unsafe.Add(ref dd, ol + r) = Unsafe.Add(ref l0, i);
             }
         }
@@ -111,7 +109,7 @@ public sealed class FastLengthSystem : IHairSystem
         {
             int first = firsts[0];
             TransposeOut(t, TX, w.PosX, first, rows); TransposeOut(t, TY, w.PosY, first, rows); TransposeOut(t, TZ, w.PosZ, first, rows);
-            TransposeOut(t, TVx, w.VelX, first, rows); TransposeOut(t, TVy, w.VelY, first, rows); TransposeOut(t, TVz, w.VelZ, first, rows);
+            TransposeAddOut(t, TVx, w.VelX, first, rows); TransposeAddOut(t, TVy, w.VelY, first, rows); TransposeAddOut(t, TVz, w.VelZ, first, rows);
             return;
         }
         ref float dd = ref t.Data[0];
@@ -125,7 +123,7 @@ public sealed class FastLengthSystem : IHairSystem
             {
                 int i = first + k, r = k * width + l;
                 Unsafe.Add(ref px, i) = Unsafe.Add(ref dd, ox + r); Unsafe.Add(ref py, i) = Unsafe.Add(ref dd, oy + r); Unsafe.Add(ref pz, i) = Unsafe.Add(ref dd, oz + r);
-                Unsafe.Add(ref vx, i) = Unsafe.Add(ref dd, ovx + r); Unsafe.Add(ref vy, i) = Unsafe.Add(ref dd, ovy + r); Unsafe.Add(ref vz, i) = Unsafe.Add(ref dd, ovz + r);
+                Unsafe.Add(ref vx, i) += Unsafe.Add(ref dd, ovx + r); Unsafe.Add(ref vy, i) += Unsafe.Add(ref dd, ovy + r); Unsafe.Add(ref vz, i) += Unsafe.Add(ref dd, ovz + r);
             }
         }
     }
@@ -153,6 +151,29 @@ public sealed class FastLengthSystem : IHairSystem
             ref float d = ref Simd.At(dst, first + g * rows);
             for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows);
         }
+    }
+
+    /// <summary>Tile column l's velocity changes added to strand l's particles, 8 strands at a time.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void TransposeAddOut(scoped StrandScratch t, int field, float[] dst, int first, int rows)
+    {
+        int lanes = Lanes;
+        ref float s = ref t.Data[t.Offset(field)];
+        for (int g = 0; g < lanes; g += 8)
+        {
+            ref float d = ref Simd.At(dst, first + g * rows);
+            for (int c = 0; c < rows; c += 8) Transpose.Block8Add(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows);
+        }
+    }
+
+    /// <summary>
+    /// The velocity fields of the tile hold velocity changes, not velocities (so velocities are never transposed
+    /// in): every sweep writes the change of rows 1 … rows−1, and the root row never changes.
+    /// </summary>
+    private static void ClearRootKick(scoped StrandScratch t)
+    {
+        int lanes = Lanes;
+        t.Data.Slice(t.Offset(TVx), lanes).Clear(); t.Data.Slice(t.Offset(TVy), lanes).Clear(); t.Data.Slice(t.Offset(TVz), lanes).Clear();
     }
 
     /// <summary>Per-sweep constants and tile offsets.</summary>
@@ -301,10 +322,10 @@ public sealed class FastLengthSystem : IHairSystem
     private static void Kick(ref float d, int r, int ovx, int ovy, int ovz, Vector<int> free,
                              Vector<float> cx, Vector<float> cy, Vector<float> cz, Vector<float> invH)
     {
-        var vx = Simd.Ld(ref d, ovx + r); var vy = Simd.Ld(ref d, ovy + r); var vz = Simd.Ld(ref d, ovz + r);
-        Simd.St(ref d, ovx + r, Simd.Sel(free, vx + cx * invH, vx));
-        Simd.St(ref d, ovy + r, Simd.Sel(free, vy + cy * invH, vy));
-        Simd.St(ref d, ovz + r, Simd.Sel(free, vz + cz * invH, vz));
+        // The tile holds velocity changes (added to the world's velocities on scatter); pinned lanes change by 0.
+        Simd.St(ref d, ovx + r, Simd.Sel(free, cx * invH, Vector<float>.Zero));
+        Simd.St(ref d, ovy + r, Simd.Sel(free, cy * invH, Vector<float>.Zero));
+        Simd.St(ref d, ovz + r, Simd.Sel(free, cz * invH, Vector<float>.Zero));
     }
 
     /// <summary>Coincident neighbours (the reference's fallback): the edge takes the rest direction carried by the head, else −Y.</summary>
