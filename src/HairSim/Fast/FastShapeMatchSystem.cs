@@ -76,6 +76,8 @@ public sealed class FastShapeMatchSystem : IHairSystem
         var scratch = new StrandScratch(size <= StrandScratch.StackFloats ? stackalloc float[size] : StrandScratch.Heap(size), _maxCapacity);
         int width = Vector<float>.Count;
         Span<float> d = scratch.Data;
+        // Goal slots no long strand's triple writes stay zero from one strand to the next of the same length.
+        int zeroedFor = -1;
         for (int s = begin; s < end; s++)
         {
             int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
@@ -90,9 +92,14 @@ public sealed class FastShapeMatchSystem : IHairSystem
                     Sp = ref Simd.At(w.ShapePrev, first), Sm = ref Simd.At(w.ShapeMid, first),
                     Sn = ref Simd.At(w.ShapeNext, first), Sb = ref Simd.At(w.ShapeBend, first),
                 };
-                Strand(ref v, w, first, n, padded: false, in p, scratch);
+                Strand(ref v, w, first, n, padded: false, zeroSlots: n != zeroedFor, in p, scratch);
+                zeroedFor = n;
             }
-            else ShortStrand(w, first, n, in p, scratch);
+            else
+            {
+                ShortStrand(w, first, n, in p, scratch);
+                zeroedFor = -1; // defensive: a padded strand writes goal slots 1 … Width, which other lengths use
+            }
         }
     }
 
@@ -119,7 +126,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
             Rx = ref d[scratch.Offset(CRx)], Ry = ref d[scratch.Offset(CRy)], Rz = ref d[scratch.Offset(CRz)],
             Sp = ref d[scratch.Offset(CSp)], Sm = ref d[scratch.Offset(CSm)], Sn = ref d[scratch.Offset(CSn)], Sb = ref d[scratch.Offset(CSb)],
         };
-        Strand(ref v, w, first, n, padded: true, in p, scratch);
+        Strand(ref v, w, first, n, padded: true, zeroSlots: false, in p, scratch);
         d.Slice(scratch.Offset(CVx), n).CopyTo(w.VelX.AsSpan(first, n));
         d.Slice(scratch.Offset(CVy), n).CopyTo(w.VelY.AsSpan(first, n));
         d.Slice(scratch.Offset(CVz), n).CopyTo(w.VelZ.AsSpan(first, n));
@@ -140,7 +147,7 @@ public sealed class FastShapeMatchSystem : IHairSystem
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Strand(ref StrandView v, HairWorld w, int first, int n, bool padded, in Params p, scoped StrandScratch scratch)
+    private static void Strand(ref StrandView v, HairWorld w, int first, int n, bool padded, bool zeroSlots, in Params p, scoped StrandScratch scratch)
     {
         int width = Vector<float>.Count;
         ref float g = ref scratch.Data[0];
@@ -162,9 +169,10 @@ public sealed class FastShapeMatchSystem : IHairSystem
             for (int j0 = 0; j0 < n; j0 += width) Particles(ref v, j0, j0, n, in p, scratch, ref g);
         else if (p.Alpha > 0f)
         {
-            // Zero the goal slots no triple fills (before the root's and past the tip's), so the sums need no masks.
+            // Zero the goal slots no triple fills (before the root's and past the tip's), so the sums need no masks;
+            // triples write only slots 1 … n − 2, so these stay zero for the next strand of the same length.
             int o = scratch.Offset(0), st = scratch.Stride;
-            for (int c = 0; c < 3; c++)
+            for (int c = 0; zeroSlots && c < 3; c++)
             {
                 Unsafe.Add(ref g, o + (GPx + c) * st + n - 1) = 0f; Unsafe.Add(ref g, o + (GPx + c) * st + n) = 0f;
                 Unsafe.Add(ref g, o + (GMx + c) * st) = 0f; Unsafe.Add(ref g, o + (GMx + c) * st + n - 1) = 0f;

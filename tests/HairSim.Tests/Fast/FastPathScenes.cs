@@ -10,6 +10,7 @@ internal static class FastPathScenes
     [
         "straight", "cut", "bent", "short8", "odd-lengths", "sphere", "capsule", "rotated-ellipsoid", "all-colliders",
         "literal", "length-none", "pbd", "global-shape", "speed-limit", "one-pin", "no-colliders",
+        "cut-mixed",
     ];
 
     /// <summary>A small groom on the reference head with default settings, changed per case.</summary>
@@ -36,6 +37,12 @@ internal static class FastPathScenes
             case "cut":
                 // Cuts leave 2 … 15 live particles per strand (a deterministic spread).
                 for (int s = 0; s < w.StrandCount; s++) w.StrandParticleCount[s] = 2 + (s * 7) % 14;
+                w.MarkEdited();
+                break;
+            case "cut-mixed":
+                // Runs of long strands of equal live length broken by short ones (padded path), and a second length:
+                // the fast shape match reuses zeroed goal slots between equal lengths and must reset after a short strand.
+                for (int s = 0; s < w.StrandCount; s++) w.StrandParticleCount[s] = s % 8 == 7 ? 5 : s % 24 < 12 ? 16 : 12;
                 w.MarkEdited();
                 break;
             case "bent":
