@@ -109,7 +109,7 @@ public sealed class FastLengthSystem : IHairSystem
         {
             int first = firsts[0];
             TransposeOut(t, TX, w.PosX, first, rows); TransposeOut(t, TY, w.PosY, first, rows); TransposeOut(t, TZ, w.PosZ, first, rows);
-            TransposeAddOut(t, TVx, w.VelX, first, rows); TransposeAddOut(t, TVy, w.VelY, first, rows); TransposeAddOut(t, TVz, w.VelZ, first, rows);
+            TransposeOut(t, TVx, w.VelX, first, rows, add: true); TransposeOut(t, TVy, w.VelY, first, rows, add: true); TransposeOut(t, TVz, w.VelZ, first, rows, add: true);
             return;
         }
         ref float dd = ref t.Data[0];
@@ -141,28 +141,16 @@ public sealed class FastLengthSystem : IHairSystem
         }
     }
 
+    /// <summary>Tile column l back to strand l's particles, 8 strands at a time; with add, added to them (velocity changes).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows)
+    private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows, bool add = false)
     {
         int lanes = Lanes;
         ref float s = ref t.Data[t.Offset(field)];
         for (int g = 0; g < lanes; g += 8)
         {
             ref float d = ref Simd.At(dst, first + g * rows);
-            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows);
-        }
-    }
-
-    /// <summary>Tile column l's velocity changes added to strand l's particles, 8 strands at a time.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void TransposeAddOut(scoped StrandScratch t, int field, float[] dst, int first, int rows)
-    {
-        int lanes = Lanes;
-        ref float s = ref t.Data[t.Offset(field)];
-        for (int g = 0; g < lanes; g += 8)
-        {
-            ref float d = ref Simd.At(dst, first + g * rows);
-            for (int c = 0; c < rows; c += 8) Transpose.Block8Add(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows);
+            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows, add);
         }
     }
 
