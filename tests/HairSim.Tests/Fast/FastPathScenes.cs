@@ -125,8 +125,8 @@ internal static class FastPathScenes
     {
         float t = frame / 60f;
         var shift = teleport && frame >= TeleportFrame ? new Vector3(0.8f, 0, 0) : Vector3.Zero;
-        return new RigidTransform(shift + new Vector3(0, 0.03f * MathF.Sin(2 * MathF.PI * 2f * t), 0),
-            Quaternion.CreateFromAxisAngle(Vector3.UnitY, 0.7f * MathF.Sin(2 * MathF.PI * 1.5f * t)));
+        var shake = HairSim.Measurement.HeadMotion.Shake(t);
+        return new RigidTransform(shift + shake.Position, shake.Rotation);
     }
 
     public static float MaxPositionDifference(HairWorld a, HairWorld b)
