@@ -51,8 +51,16 @@ public sealed class RenderStrands
     public Vector3[] Points { get; }
     public int[] Counts { get; }
     public int[] SheetFirst { get; }
-    /// <summary>Number of points across all render strands (sum of Counts), updated each frame.</summary>
-    public int TotalPoints { get; internal set; }
+    /// <summary>Number of points across all render strands (sum of Counts), computed on demand.</summary>
+    public int TotalPoints
+    {
+        get
+        {
+            int sum = 0;
+            foreach (int c in Counts) sum += c;
+            return sum;
+        }
+    }
 
     public ReadOnlySpan<Vector3> Strand(int r) => Points.AsSpan(r * Stride, Counts[r]);
 }

@@ -55,14 +55,6 @@ public sealed class InterpolateSystem : IHairSystem
                 }
             }
         }
-        if (end == w.SheetCount) _out.TotalPoints = SumCounts();
-    }
-
-    private int SumCounts()
-    {
-        int sum = 0;
-        foreach (int c in _out.Counts) sum += c;
-        return sum;
     }
 
     /// <summary>Particle k of strand s, clamped to its live tip.</summary>

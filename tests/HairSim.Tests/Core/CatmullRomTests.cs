@@ -72,6 +72,9 @@ public class CatmullRomTests
         Assert.Equal(w.GetStrandPositions(1), r.Strand(4).ToArray());
         // Between a full strand (10) and the cut one (4) the lengths step down.
         Assert.Equal(new[] { 10, 9, 7, 6, 4 }, r.Counts.AsSpan(0, 5).ToArray());
+        int sum = 0;
+        foreach (int c in r.Counts) sum += c;
+        Assert.Equal(sum, r.TotalPoints);
         foreach (var p in r.Points.AsSpan(0, r.Stride * 5))
             Assert.True(float.IsFinite(p.X) && float.IsFinite(p.Y) && float.IsFinite(p.Z));
     }
