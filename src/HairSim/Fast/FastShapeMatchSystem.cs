@@ -11,7 +11,7 @@ namespace HairSim.Fast;
 /// ends coincide are redone in scalar code with the reference's fallback axis. Strands shorter than Width + 2 are
 /// copied into padded scratch first, so no load or store ever leaves the strand.
 /// </summary>
-public sealed class FastShapeMatchSystem : IHairSystem
+public sealed partial class FastShapeMatchSystem : IHairSystem
 {
     public string Name => ShapeMatchSystem.SystemName;
     public SystemPhase Phase => SystemPhase.Substep;
@@ -22,8 +22,18 @@ public sealed class FastShapeMatchSystem : IHairSystem
         CSp = 19, CSm = 20, CSn = 21, CSb = 22, BNx = 23, BNy = 24, BNz = 25, FieldCount = 26;
 
     private readonly int _maxCapacity;
+    private readonly bool _wide;
 
-    public FastShapeMatchSystem(int maxStrandCapacity) => _maxCapacity = maxStrandCapacity;
+    /// <param name="maxStrandCapacity">The longest strand's capacity (sizes the per-thread scratch).</param>
+    /// <param name="allowWide">Use the 16-lane AVX-512 path where the CPU has it (tests turn it off to check the 8-lane path).</param>
+    public FastShapeMatchSystem(int maxStrandCapacity, bool allowWide = true)
+    {
+        _maxCapacity = maxStrandCapacity;
+        _wide = allowWide && WideAvailable;
+    }
+
+    /// <summary>Whether this instance takes the 16-lane path for the strands it can.</summary>
+    internal bool UsesWide => _wide;
 
     private ref struct StrandView
     {
@@ -72,6 +82,11 @@ public sealed class FastShapeMatchSystem : IHairSystem
         var st = ctx.Settings;
         var p = new Params(ctx.H, st.Alpha, st.GlobalShapeStiffness, st.Mode == ShapeMatchMode.LiteralForce, ctx.HeadAt(substep));
         if (p.Alpha <= 0f && p.Beta <= 0f) return;
+        if (_wide && p.Beta == 0f)
+        {
+            RunWide(w, begin, end, in p);
+            return;
+        }
         int size = StrandScratch.Size(_maxCapacity, FieldCount);
         var scratch = new StrandScratch(size <= StrandScratch.StackFloats ? stackalloc float[size] : StrandScratch.Heap(size), _maxCapacity);
         int width = Vector<float>.Count;

@@ -1,0 +1,68 @@
+using System.Runtime.Intrinsics;
+using System.Runtime.Intrinsics.X86;
+using HairSim;
+using HairSim.Fast;
+using Xunit.Abstractions;
+
+namespace HairSim.Tests.Fast;
+
+/// <summary>
+/// On CPUs with AVX-512 the fast systems take 16-lane paths where they can. Those paths do the same arithmetic in
+/// the same order as the 8-lane paths (same reciprocal-square-root estimate), so a run with them must give exactly
+/// the bits of a run with them turned off, in every scene (cuts, short and odd strands, bends, pins, all colliders).
+/// The 8-lane path itself is checked against the reference path by <see cref="FastVsReferenceTests"/> on
+/// machines without AVX-512, and here through this equality on machines with it.
+/// </summary>
+public class FastWidePathTests(ITestOutputHelper output)
+{
+    public static TheoryData<string> Scenes()
+    {
+        var d = new TheoryData<string>();
+        foreach (var n in FastPathScenes.Names) d.Add(n);
+        return d;
+    }
+
+    /// <summary>The default pipeline with every fast system's 16-lane path turned off.</summary>
+    internal static PipelineBuilder NarrowOnly()
+    {
+        var b = PipelineBuilder.CreateDefault();
+        foreach (var f in b.Factories.ToArray())
+        {
+            Func<HairScene, IHairSystem>? narrow = f.Name switch
+            {
+                ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide: false),
+                _ => null,
+            };
+            if (narrow != null) b.Replace(f with { CreateFast = narrow });
+        }
+        return b;
+    }
+
+    [Theory]
+    [MemberData(nameof(Scenes))]
+    public void WidePathGivesTheBitsOfTheNarrowPath(string scene)
+    {
+        var wide = FastPathScenes.Build(scene, SolverPath.Fast);
+        var narrow = FastPathScenes.Build(scene, SolverPath.Fast);
+        using var dispatcher = new ParallelDispatcher(2);
+        var simW = new HairSimulation(wide, dispatcher: dispatcher);
+        var simN = new HairSimulation(narrow, NarrowOnly(), dispatcher);
+        for (int f = 1; f <= 12; f++)
+        {
+            simW.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simN.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            Assert.True(wide.World.BitEquals(narrow.World), $"{scene}: the paths differ after frame {f}");
+        }
+        Assert.False(FastPathScenes.Build(scene, SolverPath.Fast).World.BitEquals(wide.World));
+        output.WriteLine($"{scene}: 16-lane paths {(WideExpected ? "on" : "not available on this CPU")}");
+    }
+
+    private static bool WideExpected => Vector512.IsHardwareAccelerated && Avx512F.IsSupported && System.Numerics.Vector<float>.Count == 8;
+
+    [Fact]
+    public void WidePathIsUsedWhereTheCpuHasIt()
+    {
+        Assert.Equal(WideExpected, new FastShapeMatchSystem(16).UsesWide);
+        Assert.False(new FastShapeMatchSystem(16, allowWide: false).UsesWide);
+    }
+}
