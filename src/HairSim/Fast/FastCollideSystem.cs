@@ -1,5 +1,6 @@
 using System.Runtime.CompilerServices;
 using System.Numerics;
+using System.Runtime.Intrinsics;
 
 namespace HairSim.Fast;
 
@@ -10,6 +11,11 @@ namespace HairSim.Fast;
 /// </summary>
 public sealed class FastCollideSystem : IHairSystem
 {
+    private readonly bool _wide;
+
+    /// <param name="allowWide">Use 16-lane chunks where the CPU has AVX-512 (same bits either way).</param>
+    public FastCollideSystem(bool allowWide = true) => _wide = allowWide && ParticleRuns.WideAvailable;
+
     public string Name => CollideSystem.SystemName;
     public SystemPhase Phase => SystemPhase.Substep;
 
@@ -23,12 +29,12 @@ public sealed class FastCollideSystem : IHairSystem
             if (col.Kind == ColliderKind.Ellipsoid)
             {
                 var k = new EllipsoidKernel(col, slide);
-                ParticleRuns.ForEachLive(scene.World, begin, end, ref k);
+                ParticleRuns.ForEachLiveWide(scene.World, begin, end, ref k, _wide);
             }
             else
             {
                 var k = new CapsuleKernel(col, slide);
-                ParticleRuns.ForEachLive(scene.World, begin, end, ref k);
+                ParticleRuns.ForEachLiveWide(scene.World, begin, end, ref k, _wide);
             }
         }
     }
@@ -47,10 +53,60 @@ public sealed class FastCollideSystem : IHairSystem
         Simd.St(ref vz, 0, Simd.Sel(m, (z - vn * nz) * slide, z));
     }
 
-    private readonly struct EllipsoidKernel : IParticleKernel
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Respond16(Vector512<float> hit, Vector512<float> nx, Vector512<float> ny, Vector512<float> nz, Vector512<float> slide,
+                                  ref float vx, ref float vy, ref float vz)
+    {
+        var x = Vector512.LoadUnsafe(ref vx); var y = Vector512.LoadUnsafe(ref vy); var z = Vector512.LoadUnsafe(ref vz);
+        var vn = x * nx + y * ny + z * nz;
+        var m = hit & Vector512.LessThan(vn, Vector512<float>.Zero);
+        if (m == Vector512<float>.Zero) return;
+        Vector512.ConditionalSelect(m, (x - vn * nx) * slide, x).StoreUnsafe(ref vx);
+        Vector512.ConditionalSelect(m, (y - vn * ny) * slide, y).StoreUnsafe(ref vy);
+        Vector512.ConditionalSelect(m, (z - vn * nz) * slide, z).StoreUnsafe(ref vz);
+    }
+
+    private readonly struct EllipsoidKernel : IWideParticleKernel
     {
         private readonly PoseLanes _toLocal, _toWorld;
         private readonly Vector<float> _cx, _cy, _cz, _invRx, _invRy, _invRz, _invRx2, _invRy2, _invRz2, _ry, _slide;
+        private readonly W16 _w;
+
+        /// <summary>The 16-lane copies of the constants.</summary>
+        private readonly struct W16(PoseLanes toLocal, PoseLanes toWorld, in Collider c, float slide)
+        {
+            public readonly PoseLanes16 ToLocal = new(toLocal), ToWorld = new(toWorld);
+            public readonly Vector512<float> Cx = Vector512.Create(c.Center.X), Cy = Vector512.Create(c.Center.Y), Cz = Vector512.Create(c.Center.Z),
+                InvRx = Vector512.Create(1f / c.Radii.X), InvRy = Vector512.Create(1f / c.Radii.Y), InvRz = Vector512.Create(1f / c.Radii.Z),
+                InvRx2 = Vector512.Create(1f / (c.Radii.X * c.Radii.X)), InvRy2 = Vector512.Create(1f / (c.Radii.Y * c.Radii.Y)),
+                InvRz2 = Vector512.Create(1f / (c.Radii.Z * c.Radii.Z)), Ry = Vector512.Create(c.Radii.Y), Slide = Vector512.Create(slide);
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public void Chunk16(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
+                            ref float invMass, ref float rx, ref float ry, ref float rz)
+        {
+            ref readonly W16 k = ref _w;
+            var x = Vector512.LoadUnsafe(ref px); var y = Vector512.LoadUnsafe(ref py); var z = Vector512.LoadUnsafe(ref pz);
+            k.ToLocal.Direction(x - k.Cx, y - k.Cy, z - k.Cz, out var lx, out var ly, out var lz);
+            var qx = lx * k.InvRx; var qy = ly * k.InvRy; var qz = lz * k.InvRz;
+            var r = Vector512.Sqrt(qx * qx + qy * qy + qz * qz);
+            var hit = Vector512.LessThan(r, Vector512<float>.One) & ~Vector512.Equals(Vector512.LoadUnsafe(ref invMass), Vector512<float>.Zero);
+            if (hit == Vector512<float>.Zero) return;
+            var centre = Vector512.LessThan(r, Vector512.Create(1e-12f));
+            var inv = Vector512<float>.One / Vector512.ConditionalSelect(centre, Vector512<float>.One, r);
+            var sx = Vector512.ConditionalSelect(centre, Vector512<float>.Zero, lx * inv);
+            var sy = Vector512.ConditionalSelect(centre, k.Ry, ly * inv);
+            var sz = Vector512.ConditionalSelect(centre, Vector512<float>.Zero, lz * inv);
+            var nx = sx * k.InvRx2; var ny = sy * k.InvRy2; var nz = sz * k.InvRz2;
+            var nInv = Vector512<float>.One / Vector512.Sqrt(nx * nx + ny * ny + nz * nz);
+            k.ToWorld.Point(sx, sy, sz, out var wx, out var wy, out var wz);
+            k.ToWorld.Direction(nx * nInv, ny * nInv, nz * nInv, out var wnx, out var wny, out var wnz);
+            Vector512.ConditionalSelect(hit, wx, x).StoreUnsafe(ref px);
+            Vector512.ConditionalSelect(hit, wy, y).StoreUnsafe(ref py);
+            Vector512.ConditionalSelect(hit, wz, z).StoreUnsafe(ref pz);
+            Respond16(hit, wnx, wny, wnz, k.Slide, ref vx, ref vy, ref vz);
+        }
 
         public EllipsoidKernel(in Collider c, float slide)
         {
@@ -61,6 +117,7 @@ public sealed class FastCollideSystem : IHairSystem
             _invRx2 = new(1f / (c.Radii.X * c.Radii.X)); _invRy2 = new(1f / (c.Radii.Y * c.Radii.Y)); _invRz2 = new(1f / (c.Radii.Z * c.Radii.Z));
             _ry = new(c.Radii.Y);
             _slide = new(slide);
+            _w = new W16(_toLocal, _toWorld, c, slide);
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -90,10 +147,38 @@ public sealed class FastCollideSystem : IHairSystem
         }
     }
 
-    private readonly struct CapsuleKernel : IParticleKernel
+    private readonly struct CapsuleKernel : IWideParticleKernel
     {
         private readonly Vector<float> _ax, _ay, _az, _abx, _aby, _abz, _invLen2, _radius, _slide, _fx, _fy, _fz;
         private readonly bool _segment;
+        private readonly Vector512<float> _ax16, _ay16, _az16, _abx16, _aby16, _abz16, _invLen216, _radius16, _slide16, _fx16, _fy16, _fz16;
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public void Chunk16(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
+                            ref float invMass, ref float rx, ref float ry, ref float rz)
+        {
+            var x = Vector512.LoadUnsafe(ref px); var y = Vector512.LoadUnsafe(ref py); var z = Vector512.LoadUnsafe(ref pz);
+            var cx = _ax16; var cy = _ay16; var cz = _az16;
+            if (_segment)
+            {
+                var t = ((x - _ax16) * _abx16 + (y - _ay16) * _aby16 + (z - _az16) * _abz16) * _invLen216;
+                t = Vector512.Min(Vector512.Max(t, Vector512<float>.Zero), Vector512<float>.One);
+                cx += t * _abx16; cy += t * _aby16; cz += t * _abz16;
+            }
+            var dx = x - cx; var dy = y - cy; var dz = z - cz;
+            var dist = Vector512.Sqrt(dx * dx + dy * dy + dz * dz);
+            var hit = Vector512.LessThan(dist, _radius16) & ~Vector512.Equals(Vector512.LoadUnsafe(ref invMass), Vector512<float>.Zero);
+            if (hit == Vector512<float>.Zero) return;
+            var onAxis = Vector512.LessThan(dist, Vector512.Create(1e-12f));
+            var inv = Vector512<float>.One / Vector512.ConditionalSelect(onAxis, Vector512<float>.One, dist);
+            var nx = Vector512.ConditionalSelect(onAxis, _fx16, dx * inv);
+            var ny = Vector512.ConditionalSelect(onAxis, _fy16, dy * inv);
+            var nz = Vector512.ConditionalSelect(onAxis, _fz16, dz * inv);
+            Vector512.ConditionalSelect(hit, cx + nx * _radius16, x).StoreUnsafe(ref px);
+            Vector512.ConditionalSelect(hit, cy + ny * _radius16, y).StoreUnsafe(ref py);
+            Vector512.ConditionalSelect(hit, cz + nz * _radius16, z).StoreUnsafe(ref pz);
+            Respond16(hit, nx, ny, nz, _slide16, ref vx, ref vy, ref vz);
+        }
 
         public CapsuleKernel(in Collider c, float slide)
         {
@@ -108,6 +193,12 @@ public sealed class FastCollideSystem : IHairSystem
             // On the axis itself the reference pushes sideways (perpendicular to the axis); a sphere pushes along +Y.
             var fallback = _segment ? RestShape.AnyPerpendicular(Vector3.Normalize(ab)) : Vector3.UnitY;
             _fx = new(fallback.X); _fy = new(fallback.Y); _fz = new(fallback.Z);
+            _ax16 = Vector512.Create(c.Center.X); _ay16 = Vector512.Create(c.Center.Y); _az16 = Vector512.Create(c.Center.Z);
+            _abx16 = Vector512.Create(ab.X); _aby16 = Vector512.Create(ab.Y); _abz16 = Vector512.Create(ab.Z);
+            _invLen216 = Vector512.Create(_segment ? 1f / len2 : 0f);
+            _radius16 = Vector512.Create(c.Radius);
+            _slide16 = Vector512.Create(slide);
+            _fx16 = Vector512.Create(fallback.X); _fy16 = Vector512.Create(fallback.Y); _fz16 = Vector512.Create(fallback.Z);
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]

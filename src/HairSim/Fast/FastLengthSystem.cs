@@ -134,6 +134,12 @@ public sealed class FastLengthSystem : IHairSystem
     {
         int lanes = Lanes;
         ref float d = ref t.Data[t.Offset(field)];
+        if (rows == 16)
+        {
+            // The common strand length: constant strides let the JIT fold every row address into the instruction.
+            Transpose.In16(ref Simd.At(src, first), ref d);
+            return;
+        }
         for (int g = 0; g < lanes; g += 8)
         {
             ref float s = ref Simd.At(src, first + g * rows);
@@ -147,6 +153,12 @@ public sealed class FastLengthSystem : IHairSystem
     {
         int lanes = Lanes;
         ref float s = ref t.Data[t.Offset(field)];
+        if (rows == 16)
+        {
+            if (add) Transpose.Out16(ref s, ref Simd.At(dst, first), add: true);
+            else Transpose.Out16(ref s, ref Simd.At(dst, first), add: false);
+            return;
+        }
         for (int g = 0; g < lanes; g += 8)
         {
             ref float d = ref Simd.At(dst, first + g * rows);

@@ -40,6 +40,7 @@ public sealed partial class FastShapeMatchSystem
         var fOne = Vector512.Create(p.F.GetElement(0)); var fHalf = Vector512.Create(p.FHalf.GetElement(0)); var fThird = Vector512.Create(p.FThird.GetElement(0));
         var lane = Vector512.Create(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
         int length = w.PosX.Length;
+        var consts = new Consts16(in p);
 
         for (int s = begin; s < end; s++)
         {
@@ -49,6 +50,7 @@ public sealed partial class FastShapeMatchSystem
                 NarrowStrand(w, first, n, in p);
                 continue;
             }
+            if (n == Wide && first >= 1 && Strand16(w, first, in consts)) continue;
             ref float px = ref Simd.At(w.PosX, first); ref float py = ref Simd.At(w.PosY, first); ref float pz = ref Simd.At(w.PosZ, first);
             ref float sp = ref Simd.At(w.ShapePrev, first); ref float sm = ref Simd.At(w.ShapeMid, first); ref float sn = ref Simd.At(w.ShapeNext, first);
             var lastTriple = Vector512.Create(n - 2);
@@ -112,6 +114,72 @@ public sealed partial class FastShapeMatchSystem
             }
         }
     }
+
+    /// <summary>Per-run constants of <see cref="Strand16"/>.</summary>
+    private readonly struct Consts16
+    {
+        public readonly Vector512<float> Third, Eps2, Half, ThreeHalves, Valid, F;
+
+        public Consts16(in Params p)
+        {
+            Third = Vector512.Create(1f / 3f); Eps2 = Vector512.Create(1e-24f);
+            Half = Vector512.Create(0.5f); ThreeHalves = Vector512.Create(1.5f);
+            // Triples 1 … 14 exist; particle j has 1, 2, 3, …, 3, 2, 1 goals.
+            Valid = Vector512.Create(0, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0).AsSingle();
+            float f1 = p.F.GetElement(0), f2 = p.FHalf.GetElement(0), f3 = p.FThird.GetElement(0);
+            F = Vector512.Create(f1, f2, f3, f3, f3, f3, f3, f3, f3, f3, f3, f3, f3, f3, f2, f1);
+        }
+    }
+
+    /// <summary>
+    /// A 16-particle strand entirely in registers: triples 0 … 15 in one chunk (0 and 15 do not exist and give
+    /// zero goals; reading particle −1 and 16 touches the neighbouring strands, masked out), then each particle's
+    /// "prev" and "next" goals are the neighbouring lanes (<c>valignd</c> shifts in zeros), so no goal goes through
+    /// memory. Same arithmetic and order as the 8-lane path. Returns false (nothing written) if a triple's ends
+    /// coincide: the caller then takes the general path with its scalar fallback.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static bool Strand16(HairWorld w, int first, in Consts16 c)
+    {
+        ref float px = ref Simd.At(w.PosX, first - 1); ref float py = ref Simd.At(w.PosY, first - 1); ref float pz = ref Simd.At(w.PosZ, first - 1);
+        var bx = Vector512.LoadUnsafe(ref px, 1); var by = Vector512.LoadUnsafe(ref py, 1); var bz = Vector512.LoadUnsafe(ref pz, 1);
+        var ax = Vector512.LoadUnsafe(ref px) - bx; var ay = Vector512.LoadUnsafe(ref py) - by; var az = Vector512.LoadUnsafe(ref pz) - bz;
+        var cx = Vector512.LoadUnsafe(ref px, 2) - bx; var cy = Vector512.LoadUnsafe(ref py, 2) - by; var cz = Vector512.LoadUnsafe(ref pz, 2) - bz;
+        var ox = (ax + cx) * c.Third; var oy = (ay + cy) * c.Third; var oz = (az + cz) * c.Third;
+        var ex = cx - ax; var ey = cy - ay; var ez = cz - az;
+        var len2 = ex * ex + ey * ey + ez * ez;
+        var ok = Vector512.GreaterThan(len2, c.Eps2);
+        if (Vector512.AndNot(c.Valid, ok) != Vector512<float>.Zero) return false;
+        var l2 = Vector512.ConditionalSelect(ok, len2, Vector512<float>.One);
+        var inv = Vector512.Create(Avx.ReciprocalSqrt(l2.GetLower()), Avx.ReciprocalSqrt(l2.GetUpper()));
+        inv *= c.ThreeHalves - c.Half * l2 * inv * inv;
+        ex *= inv; ey *= inv; ez *= inv;
+        var pa = Vector512.LoadUnsafe(ref Simd.At(w.ShapePrev, first)); var pm = Vector512.LoadUnsafe(ref Simd.At(w.ShapeMid, first));
+        var pn = Vector512.LoadUnsafe(ref Simd.At(w.ShapeNext, first));
+        var v = c.Valid;
+        // Particle j: goal "prev" of triple j + 1, "mid" of triple j, "next" of triple j − 1.
+        var sx = Down(Vector512.ConditionalSelect(v, (ox - ax) + pa * ex, default)) + Vector512.ConditionalSelect(v, ox + pm * ex, default)
+                 + Up(Vector512.ConditionalSelect(v, (ox - cx) + pn * ex, default));
+        var sy = Down(Vector512.ConditionalSelect(v, (oy - ay) + pa * ey, default)) + Vector512.ConditionalSelect(v, oy + pm * ey, default)
+                 + Up(Vector512.ConditionalSelect(v, (oy - cy) + pn * ey, default));
+        var sz = Down(Vector512.ConditionalSelect(v, (oz - az) + pa * ez, default)) + Vector512.ConditionalSelect(v, oz + pm * ez, default)
+                 + Up(Vector512.ConditionalSelect(v, (oz - cz) + pn * ez, default));
+        var apply = ~Vector512.Equals(Vector512.LoadUnsafe(ref Simd.At(w.InvMass, first)), Vector512<float>.Zero);
+        ref float vx = ref Simd.At(w.VelX, first); ref float vy = ref Simd.At(w.VelY, first); ref float vz = ref Simd.At(w.VelZ, first);
+        var x = Vector512.LoadUnsafe(ref vx); var y = Vector512.LoadUnsafe(ref vy); var z = Vector512.LoadUnsafe(ref vz);
+        Vector512.ConditionalSelect(apply, x + c.F * sx, x).StoreUnsafe(ref vx);
+        Vector512.ConditionalSelect(apply, y + c.F * sy, y).StoreUnsafe(ref vy);
+        Vector512.ConditionalSelect(apply, z + c.F * sz, z).StoreUnsafe(ref vz);
+        return true;
+    }
+
+    /// <summary>Lane j ← lane j + 1, lane 15 ← 0.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector512<float> Down(Vector512<float> x) => Avx512F.AlignRight32(Vector512<uint>.Zero, x.AsUInt32(), 1).AsSingle();
+
+    /// <summary>Lane j ← lane j − 1, lane 0 ← 0.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector512<float> Up(Vector512<float> x) => Avx512F.AlignRight32(x.AsUInt32(), Vector512<uint>.Zero, 15).AsSingle();
 
     /// <summary>Triples of a wide chunk whose ends coincide: the reference's fallback axis, in scalar code.</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]

@@ -11,6 +11,16 @@ internal interface IParticleKernel
 }
 
 /// <summary>
+/// A kernel that also has a 16-lane (AVX-512) chunk doing the same arithmetic in the same order as
+/// <see cref="IParticleKernel.Chunk"/>, so results do not depend on which one ran.
+/// </summary>
+internal interface IWideParticleKernel : IParticleKernel
+{
+    void Chunk16(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
+                 ref float invMass, ref float rx, ref float ry, ref float rz);
+}
+
+/// <summary>
 /// Runs a per-particle kernel over the live particles of strands [begin, end). Strands that are not cut are
 /// contiguous with the next strand, so consecutive whole strands are merged into one run and only the end of a
 /// run needs a partial chunk. That partial chunk is copied into a padded stack buffer (padding lanes have
@@ -19,6 +29,47 @@ internal interface IParticleKernel
 /// </summary>
 internal static class ParticleRuns
 {
+    /// <summary>Whether this CPU runs <see cref="IWideParticleKernel.Chunk16"/> natively.</summary>
+    public static bool WideAvailable => System.Runtime.Intrinsics.Vector512.IsHardwareAccelerated && Vector<float>.Count == 8;
+
+    /// <summary>
+    /// As <see cref="ForEachLive{TKernel}"/>, but whole 16-particle chunks go through the kernel's 16-lane chunk
+    /// when <paramref name="wide"/> (the rest of a run through the 8-lane one).
+    /// </summary>
+    public static void ForEachLiveWide<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel, bool wide) where TKernel : struct, IWideParticleKernel
+    {
+        if (!wide) { ForEachLive(w, begin, end, ref kernel); return; }
+        int width = Vector<float>.Count;
+        Span<float> tail = stackalloc float[10 * width];
+        int[] firsts = w.StrandFirst, counts = w.StrandParticleCount, caps = w.StrandCapacity;
+        int s = begin;
+        while (s < end)
+        {
+            int start = firsts[s];
+            int stop = start + counts[s];
+            while (counts[s] == caps[s] && s + 1 < end)
+            {
+                s++;
+                stop = firsts[s] + counts[s];
+            }
+            s++;
+            int i = start;
+            ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
+            ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
+            ref float m = ref Simd.At(w.InvMass, 0), rx = ref Simd.At(w.RestX, 0), ry = ref Simd.At(w.RestY, 0), rz = ref Simd.At(w.RestZ, 0);
+            for (; i <= stop - 16; i += 16)
+                kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
+                    ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
+                    ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
+            if (i < stop) RunNarrow(w, i, stop, ref kernel, tail);
+        }
+    }
+
+    /// <summary>The 8-lane remainder of a run (not inlined: it keeps the 16-lane loop's inlining budget free).</summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    private static void RunNarrow<TKernel>(HairWorld w, int start, int stop, ref TKernel kernel, Span<float> tail) where TKernel : struct, IParticleKernel =>
+        Run(w, start, stop, ref kernel, tail);
+
     public static void ForEachLive<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel) where TKernel : struct, IParticleKernel
     {
         int width = Vector<float>.Count;

@@ -104,3 +104,33 @@ internal readonly struct PoseLanes
     public Vector3 Direction(Vector3 v) => new(
         S00 * v.X + S01 * v.Y + S02 * v.Z, S10 * v.X + S11 * v.Y + S12 * v.Z, S20 * v.X + S21 * v.Y + S22 * v.Z);
 }
+
+/// <summary><see cref="PoseLanes"/> broadcast to 16 lanes, for the AVX-512 kernels (same arithmetic, same order).</summary>
+internal readonly struct PoseLanes16
+{
+    public readonly Vector512<float> M00, M01, M02, M10, M11, M12, M20, M21, M22, Tx, Ty, Tz;
+
+    public PoseLanes16(in PoseLanes p)
+    {
+        M00 = Vector512.Create(p.S00); M01 = Vector512.Create(p.S01); M02 = Vector512.Create(p.S02);
+        M10 = Vector512.Create(p.S10); M11 = Vector512.Create(p.S11); M12 = Vector512.Create(p.S12);
+        M20 = Vector512.Create(p.S20); M21 = Vector512.Create(p.S21); M22 = Vector512.Create(p.S22);
+        Tx = Vector512.Create(p.STx); Ty = Vector512.Create(p.STy); Tz = Vector512.Create(p.STz);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public void Point(Vector512<float> x, Vector512<float> y, Vector512<float> z, out Vector512<float> ox, out Vector512<float> oy, out Vector512<float> oz)
+    {
+        ox = M00 * x + M01 * y + M02 * z + Tx;
+        oy = M10 * x + M11 * y + M12 * z + Ty;
+        oz = M20 * x + M21 * y + M22 * z + Tz;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public void Direction(Vector512<float> x, Vector512<float> y, Vector512<float> z, out Vector512<float> ox, out Vector512<float> oy, out Vector512<float> oz)
+    {
+        ox = M00 * x + M01 * y + M02 * z;
+        oy = M10 * x + M11 * y + M12 * z;
+        oz = M20 * x + M21 * y + M22 * z;
+    }
+}

@@ -23,6 +23,9 @@ public class FastDegenerateCaseTests(ITestOutputHelper output)
         // Strand 0: particle 5 on top of particle 4 (zero-length edge), particle 9 on top of particle 7 (triple 8's ends coincide).
         w.SetPosition(5, w.GetPosition(4));
         w.SetPosition(9, w.GetPosition(7));
+        // Strand 2 (straight, not the first in the world): triple 5's ends coincide (the 16-lane path's register-only case hands it on).
+        int f2 = w.StrandFirst[2];
+        w.SetPosition(f2 + 6, w.GetPosition(f2 + 4));
         // Strand 3 (bent rest shape): the same, in a bent strand.
         int f3 = w.StrandFirst[3];
         w.SetPosition(f3 + 11, w.GetPosition(f3 + 9));

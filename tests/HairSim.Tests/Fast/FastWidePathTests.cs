@@ -31,6 +31,7 @@ public class FastWidePathTests(ITestOutputHelper output)
             Func<HairScene, IHairSystem>? narrow = f.Name switch
             {
                 ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide: false),
+                CollideSystem.SystemName => _ => new FastCollideSystem(allowWide: false),
                 _ => null,
             };
             if (narrow != null) b.Replace(f with { CreateFast = narrow });
