@@ -1,5 +1,7 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Runtime.Intrinsics;
+using System.Runtime.Intrinsics.X86;
 
 namespace HairSim.Fast;
 
@@ -12,7 +14,7 @@ namespace HairSim.Fast;
 /// Gauss–Seidel sweeps. Lanes past a strand's live count, and padding lanes of the last group, are masked out
 /// (InvMass 0).
 /// </summary>
-public sealed class FastLengthSystem : IHairSystem
+public sealed partial class FastLengthSystem : IHairSystem
 {
     public string Name => LengthSystem.SystemName;
     public SystemPhase Phase => SystemPhase.Substep;
@@ -20,13 +22,25 @@ public sealed class FastLengthSystem : IHairSystem
     // Tile fields, each maxCapacity rows × Lanes.
     private const int TX = 0, TY = 1, TZ = 2, TVx = 3, TVy = 4, TVz = 5, TM = 6, TL = 7, TOx = 8, TOy = 9, TOz = 10, FieldCount = 11;
 
-    /// <summary>SIMD vectors per tile row.</summary>
+    /// <summary>SIMD vectors per tile row (two chains whose latencies overlap).</summary>
     private const int Halves = 2;
-    private static int Lanes => Halves * Vector<float>.Count;
 
     private readonly int _maxCapacity;
+    /// <summary>Strands per tile: Halves × 8 (AVX) or Halves × 16 (AVX-512, <see cref="FollowTheLeader16"/>).</summary>
+    private readonly int _lanes;
 
-    public FastLengthSystem(int maxStrandCapacity) => _maxCapacity = maxStrandCapacity;
+    /// <param name="maxStrandCapacity">The longest strand's capacity (sizes the tile).</param>
+    /// <param name="allowWide">Sweep 16-lane vectors where the CPU has AVX-512 (same bits either way).</param>
+    public FastLengthSystem(int maxStrandCapacity, bool allowWide = true)
+    {
+        _maxCapacity = maxStrandCapacity;
+        _lanes = Halves * (allowWide && WideAvailable ? 16 : Vector<float>.Count);
+    }
+
+    private static bool WideAvailable => Vector512.IsHardwareAccelerated && Avx512F.IsSupported && Transpose.Available;
+
+    /// <summary>Whether this instance sweeps 16-lane vectors.</summary>
+    internal bool UsesWide => _lanes == Halves * 16;
 
     // The stack scratch is fully written before it is read, or only read in lanes that are masked out.
     [SkipLocalsInit]
@@ -35,7 +49,7 @@ public sealed class FastLengthSystem : IHairSystem
         var st = ctx.Settings;
         if (st.Length == LengthMode.None) return;
         var w = scene.World;
-        int lanes = Lanes, width = Vector<float>.Count;
+        int lanes = _lanes, width = Vector<float>.Count;
         // The tile is a StrandScratch whose "capacity" is rows × lanes.
         int size = StrandScratch.Size(_maxCapacity * lanes, FieldCount);
         var scratch = new StrandScratch(size <= StrandScratch.StackFloats ? stackalloc float[size] : StrandScratch.Heap(size), _maxCapacity * lanes);
@@ -58,8 +72,12 @@ public sealed class FastLengthSystem : IHairSystem
             uniform &= rows % 8 == 0 && counts[0] == rows;
             for (int l = 1; uniform && l < lanes; l++) uniform = counts[l] == rows && firsts[l] == firsts[0] + l * rows;
             Gather(w, scratch, firsts, counts, rows, uniform);
-            if (st.Length == LengthMode.FollowTheLeader) FollowTheLeader(w, scratch, firsts, rows, ctx.H, st.LengthDamping, in head);
-            else Pbd(scratch, rows, ctx.H, st.LengthIterations);
+            if (st.Length == LengthMode.FollowTheLeader)
+            {
+                if (UsesWide) FollowTheLeader16(w, scratch, firsts, rows, ctx.H, st.LengthDamping, in head);
+                else FollowTheLeader(w, scratch, firsts, rows, ctx.H, st.LengthDamping, in head);
+            }
+            else Pbd(scratch, rows, lanes, ctx.H, st.LengthIterations);
             Scatter(w, scratch, firsts, counts, rows, uniform);
         }
     }
@@ -71,18 +89,18 @@ public sealed class FastLengthSystem : IHairSystem
     /// </summary>
     private static void Gather(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
     {
-        int width = Lanes;
+        int width = firsts.Length;
         Span<float> d = t.Data;
         if (uniform)
         {
             int first = firsts[0];
-            TransposeIn(w.PosX, first, rows, t, TX); TransposeIn(w.PosY, first, rows, t, TY); TransposeIn(w.PosZ, first, rows, t, TZ);
-            TransposeIn(w.InvMass, first, rows, t, TM); TransposeIn(w.RestLength, first, rows, t, TL);
-            ClearRootKick(t);
+            TransposeIn(w.PosX, first, rows, t, TX, width); TransposeIn(w.PosY, first, rows, t, TY, width); TransposeIn(w.PosZ, first, rows, t, TZ, width);
+            TransposeIn(w.InvMass, first, rows, t, TM, width); TransposeIn(w.RestLength, first, rows, t, TL, width);
+            ClearRootKick(t, width);
             return;
         }
         int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), om = t.Offset(TM), ol = t.Offset(TL);
-        ClearRootKick(t);
+        ClearRootKick(t, width);
         // Masked lanes: InvMass 0 (never moved) at a finite position; their results are never written back.
         d.Slice(om, rows * width).Clear();
         d.Slice(ox, rows * width).Clear(); d.Slice(oy, rows * width).Clear(); d.Slice(oz, rows * width).Clear();
@@ -104,12 +122,13 @@ public sealed class FastLengthSystem : IHairSystem
 
     private static void Scatter(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, ReadOnlySpan<int> counts, int rows, bool uniform)
     {
-        int width = Lanes;
+        int width = firsts.Length;
         if (uniform)
         {
             int first = firsts[0];
-            TransposeOut(t, TX, w.PosX, first, rows); TransposeOut(t, TY, w.PosY, first, rows); TransposeOut(t, TZ, w.PosZ, first, rows);
-            TransposeOut(t, TVx, w.VelX, first, rows, add: true); TransposeOut(t, TVy, w.VelY, first, rows, add: true); TransposeOut(t, TVz, w.VelZ, first, rows, add: true);
+            TransposeOut(t, TX, w.PosX, first, rows, width); TransposeOut(t, TY, w.PosY, first, rows, width); TransposeOut(t, TZ, w.PosZ, first, rows, width);
+            TransposeOut(t, TVx, w.VelX, first, rows, width, add: true); TransposeOut(t, TVy, w.VelY, first, rows, width, add: true);
+            TransposeOut(t, TVz, w.VelZ, first, rows, width, add: true);
             return;
         }
         ref float dd = ref t.Data[0];
@@ -130,14 +149,13 @@ public sealed class FastLengthSystem : IHairSystem
 
     /// <summary>Strand l's particles (rows of length <paramref name="rows"/> from <paramref name="first"/>) into tile column l, 8 strands at a time.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void TransposeIn(float[] src, int first, int rows, scoped StrandScratch t, int field)
+    private static void TransposeIn(float[] src, int first, int rows, scoped StrandScratch t, int field, int lanes)
     {
-        int lanes = Lanes;
         ref float d = ref t.Data[t.Offset(field)];
         if (rows == 16)
         {
             // The common strand length: constant strides let the JIT fold every row address into the instruction.
-            Transpose.In16(ref Simd.At(src, first), ref d);
+            for (int g = 0; g < lanes; g += 16) Transpose.In16(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
             return;
         }
         for (int g = 0; g < lanes; g += 8)
@@ -149,14 +167,16 @@ public sealed class FastLengthSystem : IHairSystem
 
     /// <summary>Tile column l back to strand l's particles, 8 strands at a time; with add, added to them (velocity changes).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows, bool add = false)
+    private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows, int lanes, bool add = false)
     {
-        int lanes = Lanes;
         ref float s = ref t.Data[t.Offset(field)];
         if (rows == 16)
         {
-            if (add) Transpose.Out16(ref s, ref Simd.At(dst, first), add: true);
-            else Transpose.Out16(ref s, ref Simd.At(dst, first), add: false);
+            for (int g = 0; g < lanes; g += 16)
+            {
+                if (add) Transpose.Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: true);
+                else Transpose.Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
+            }
             return;
         }
         for (int g = 0; g < lanes; g += 8)
@@ -170,9 +190,8 @@ public sealed class FastLengthSystem : IHairSystem
     /// The velocity fields of the tile hold velocity changes, not velocities (so velocities are never transposed
     /// in): every sweep writes the change of rows 1 … rows−1, and the root row never changes.
     /// </summary>
-    private static void ClearRootKick(scoped StrandScratch t)
+    private static void ClearRootKick(scoped StrandScratch t, int lanes)
     {
-        int lanes = Lanes;
         t.Data.Slice(t.Offset(TVx), lanes).Clear(); t.Data.Slice(t.Offset(TVy), lanes).Clear(); t.Data.Slice(t.Offset(TVz), lanes).Clear();
     }
 
@@ -182,11 +201,11 @@ public sealed class FastLengthSystem : IHairSystem
         public readonly Vector<float> InvH, Damp, Eps2;
         public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Lanes;
 
-        public FtlParams(scoped StrandScratch t, float h, float damping)
+        public FtlParams(scoped StrandScratch t, float h, float damping, int lanes)
         {
             InvH = new(1f / h); Damp = new(damping); Eps2 = new(1e-24f); // |e| < 1e-12, squared
             Ox = t.Offset(TX); Oy = t.Offset(TY); Oz = t.Offset(TZ); Ovx = t.Offset(TVx); Ovy = t.Offset(TVy); Ovz = t.Offset(TVz);
-            Om = t.Offset(TM); Ol = t.Offset(TL); Lanes = FastLengthSystem.Lanes;
+            Om = t.Offset(TM); Ol = t.Offset(TL); Lanes = lanes;
         }
     }
 
@@ -201,7 +220,7 @@ public sealed class FastLengthSystem : IHairSystem
     {
         int width = Vector<float>.Count;
         ref float d = ref t.Data[0];
-        var p = new FtlParams(t, h, damping);
+        var p = new FtlParams(t, h, damping, firsts.Length);
         var ax = Simd.Ld(ref d, p.Ox); var ay = Simd.Ld(ref d, p.Oy); var az = Simd.Ld(ref d, p.Oz);
         var bx = Simd.Ld(ref d, p.Ox + width); var by = Simd.Ld(ref d, p.Oy + width); var bz = Simd.Ld(ref d, p.Oz + width);
         Vector<float> adx = default, ady = default, adz = default, bdx = default, bdy = default, bdz = default;
@@ -228,7 +247,7 @@ public sealed class FastLengthSystem : IHairSystem
         {
             SweepWithFallback(w, t, firsts, rows, k, h, damping, in head,
                 new Chain { Px = ax, Py = ay, Pz = az, Dx = adx, Dy = ady, Dz = adz, Free = aFree },
-                new Chain { Px = bx, Py = by, Pz = bz, Dx = bdx, Dy = bdy, Dz = bdz, Free = bFree });
+                new Chain { Px = bx, Py = by, Pz = bz, Dx = bdx, Dy = bdy, Dz = bdz, Free = bFree }, default, default);
             return;
         }
         if (rows >= 2)
@@ -272,20 +291,22 @@ public sealed class FastLengthSystem : IHairSystem
 
     /// <summary>The rest of a sweep from row <paramref name="k0"/>, when some neighbours coincide: the general row step with the reference's fallback axis.</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
+    /// <remarks>Chains c0 … c3 are the tile's 8-lane vectors in order (c2, c3 unused in a 16-lane tile).</remarks>
+    [SkipLocalsInit]
     private static void SweepWithFallback(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, int rows, int k0, float h, float damping,
-        in PoseLanes head, Chain a, Chain b)
+        in PoseLanes head, Chain c0, Chain c1, Chain c2, Chain c3)
     {
         int width = Vector<float>.Count;
         ref float d = ref t.Data[0];
-        var p = new FtlParams(t, h, damping);
+        var p = new FtlParams(t, h, damping, firsts.Length);
+        Span<Chain> chains = stackalloc Chain[4];
+        chains[0] = c0; chains[1] = c1; chains[2] = c2; chains[3] = c3;
+        int count = p.Lanes / width;
         for (int k = k0; k < rows; k++)
-        {
-            Step(w, ref d, in p, ref a, firsts, k, 0, in head);
-            Step(w, ref d, in p, ref b, firsts, k, width, in head);
-        }
+            for (int c = 0; c < count; c++) Step(w, ref d, in p, ref chains[c], firsts, k, c * width, in head);
         int r = (rows - 1) * p.Lanes;
-        Kick(ref d, r, p.Ovx, p.Ovy, p.Ovz, a.Free, a.Dx, a.Dy, a.Dz, p.InvH);
-        Kick(ref d, r + width, p.Ovx, p.Ovy, p.Ovz, b.Free, b.Dx, b.Dy, b.Dz, p.InvH);
+        for (int c = 0; c < count; c++)
+            Kick(ref d, r + c * width, p.Ovx, p.Ovy, p.Ovz, chains[c].Free, chains[c].Dx, chains[c].Dy, chains[c].Dz, p.InvH);
     }
 
     /// <summary>Row k of one vector of strands, any lanes possibly degenerate (see <see cref="Advance"/> for the common case).</summary>
@@ -347,9 +368,9 @@ public sealed class FastLengthSystem : IHairSystem
         ex = new Vector<float>(buf); ey = new Vector<float>(buf.Slice(width)); ez = new Vector<float>(buf.Slice(2 * width)); len = new Vector<float>(buf.Slice(3 * width));
     }
 
-    private static void Pbd(scoped StrandScratch t, int rows, float h, int iterations)
+    private static void Pbd(scoped StrandScratch t, int rows, int lanes, float h, int iterations)
     {
-        int width = Vector<float>.Count, lanes = Lanes;
+        int width = Vector<float>.Count;
         ref float d = ref t.Data[0];
         int ox = t.Offset(TX), oy = t.Offset(TY), oz = t.Offset(TZ), ovx = t.Offset(TVx), ovy = t.Offset(TVy), ovz = t.Offset(TVz),
             om = t.Offset(TM), ol = t.Offset(TL), oox = t.Offset(TOx), ooy = t.Offset(TOy), ooz = t.Offset(TOz);

@@ -15,27 +15,27 @@ internal static class Transpose
     public static bool Available => Avx.IsSupported && System.Numerics.Vector<float>.Count == 8;
 
     /// <summary>
-    /// 16 strands of 16 particles (256 consecutive floats) into a 16-lane tile (row k = particle k of each strand).
+    /// 16 strands of 16 particles (256 consecutive floats) into 16 columns of a tile with <paramref name="lanes"/> floats per row (row k = particle k of each strand).
     /// A separate, non-inlined method with constant strides: the JIT folds every row address into the load or
     /// store, and the four transposes are inlined against this method's own inlining budget, not the caller's.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
-    public static void In16(ref float strands, ref float tile)
+    public static void In16(ref float strands, ref float tile, int lanes)
     {
-        Block8(ref strands, 16, ref tile, 16);
-        Block8(ref Unsafe.Add(ref strands, 8), 16, ref Unsafe.Add(ref tile, 8 * 16), 16);
-        Block8(ref Unsafe.Add(ref strands, 8 * 16), 16, ref Unsafe.Add(ref tile, 8), 16);
-        Block8(ref Unsafe.Add(ref strands, 8 * 16 + 8), 16, ref Unsafe.Add(ref tile, 8 * 16 + 8), 16);
+        Block8(ref strands, 16, ref tile, lanes);
+        Block8(ref Unsafe.Add(ref strands, 8), 16, ref Unsafe.Add(ref tile, 8 * lanes), lanes);
+        Block8(ref Unsafe.Add(ref strands, 8 * 16), 16, ref Unsafe.Add(ref tile, 8), lanes);
+        Block8(ref Unsafe.Add(ref strands, 8 * 16 + 8), 16, ref Unsafe.Add(ref tile, 8 * lanes + 8), lanes);
     }
 
     /// <summary>The inverse of <see cref="In16"/>; with <paramref name="add"/> the tile is added to the strands.</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
-    public static void Out16(ref float tile, ref float strands, bool add)
+    public static void Out16(ref float tile, int lanes, ref float strands, bool add)
     {
-        Block8(ref tile, 16, ref strands, 16, add);
-        Block8(ref Unsafe.Add(ref tile, 8 * 16), 16, ref Unsafe.Add(ref strands, 8), 16, add);
-        Block8(ref Unsafe.Add(ref tile, 8), 16, ref Unsafe.Add(ref strands, 8 * 16), 16, add);
-        Block8(ref Unsafe.Add(ref tile, 8 * 16 + 8), 16, ref Unsafe.Add(ref strands, 8 * 16 + 8), 16, add);
+        Block8(ref tile, lanes, ref strands, 16, add);
+        Block8(ref Unsafe.Add(ref tile, 8 * lanes), lanes, ref Unsafe.Add(ref strands, 8), 16, add);
+        Block8(ref Unsafe.Add(ref tile, 8), lanes, ref Unsafe.Add(ref strands, 8 * 16), 16, add);
+        Block8(ref Unsafe.Add(ref tile, 8 * lanes + 8), lanes, ref Unsafe.Add(ref strands, 8 * 16 + 8), 16, add);
     }
 
     /// <summary>

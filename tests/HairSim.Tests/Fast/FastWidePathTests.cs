@@ -32,6 +32,7 @@ public class FastWidePathTests(ITestOutputHelper output)
             {
                 ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide: false),
                 CollideSystem.SystemName => _ => new FastCollideSystem(allowWide: false),
+                LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide: false),
                 _ => null,
             };
             if (narrow != null) b.Replace(f with { CreateFast = narrow });
@@ -65,5 +66,7 @@ public class FastWidePathTests(ITestOutputHelper output)
     {
         Assert.Equal(WideExpected, new FastShapeMatchSystem(16).UsesWide);
         Assert.False(new FastShapeMatchSystem(16, allowWide: false).UsesWide);
+        Assert.Equal(WideExpected, new FastLengthSystem(16).UsesWide);
+        Assert.False(new FastLengthSystem(16, allowWide: false).UsesWide);
     }
 }
