@@ -3,6 +3,7 @@ using System.Globalization;
 using System.Runtime.InteropServices;
 using System.Text;
 using HairSim;
+using HairSim.Fast;
 
 namespace HairSim.Cli;
 
@@ -60,6 +61,7 @@ public static class BenchCommand
             g.SheetCount = Math.Max(1, n / g.StrandsPerSheet);
             scenes.Add(($"{g.SheetCount * g.StrandsPerSheet:N0} strands", g));
         }
+        long maxParticles = scenes.Max(x => x.Groom.TotalParticles);
         foreach (var (name, groom) in scenes)
         {
             long particles = groom.TotalParticles;
@@ -69,6 +71,12 @@ public static class BenchCommand
             rows.Add(Frame(name, groom, SolverPath.Reference, SequentialDispatcher.Instance, 1, refWarm, refFrames));
             rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames));
             if (threads > 1) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames));
+            // Before/after in one run: the same fast path kept to its 8-lane (AVX) code, on the reference scene and the largest.
+            if (FastPathInfo.Avx512 && (name.StartsWith("reference", StringComparison.Ordinal) || groom.TotalParticles == maxParticles))
+            {
+                rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames, allowAvx512: false));
+                if (threads > 1) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames, allowAvx512: false));
+            }
         }
 
         if (systems)
@@ -97,10 +105,11 @@ public static class BenchCommand
         return GroomBuilder.BuildScene(groom, settings);
     }
 
-    private static Row Frame(string name, GroomSettings groom, SolverPath path, IThreadDispatcher dispatcher, int threads, int warmup, int frames)
+    private static Row Frame(string name, GroomSettings groom, SolverPath path, IThreadDispatcher dispatcher, int threads, int warmup, int frames,
+        bool allowAvx512 = true)
     {
         var scene = Scene(groom, path);
-        var sim = new HairSimulation(scene, dispatcher: dispatcher);
+        var sim = new HairSimulation(scene, PipelineBuilder.CreateDefault(allowAvx512), dispatcher);
         float dt = 1f / 60f;
         int f = 0;
         for (; f < warmup; f++) sim.Step(dt, HairSim.Measurement.HeadMotion.Shake((f + 1) * dt));
@@ -117,6 +126,7 @@ public static class BenchCommand
         bytes = GC.GetTotalAllocatedBytes(true) - bytes;
         if (scene.World.CountNonFinite() != 0) throw new InvalidDataException($"{name} ({path}) produced non-finite values.");
         var row = Summarise(name, "frame", path, threads, scene, times, bytes, frames);
+        if (!allowAvx512) row = row with { Path = "fast, 8-lane" };
         Console.Error.WriteLine($"{name,-22} {Label(row),-18} {row.MedianMs,9:F3} ms/frame");
         return row;
     }
@@ -203,6 +213,12 @@ public static class BenchCommand
             sb.AppendLine(string.Create(Inv, $"Target 1 — reference scene well under 1 ms per step on {threads} threads: **{refFast.MsPerStep:F3} ms/step** ({refFast.MedianMs:F2} ms per 4-substep frame)."));
         if (big != null)
             sb.AppendLine(string.Create(Inv, $"Target 2 — 100,000 strands × 16 particles, 4 substeps, within a 60 Hz frame (16.7 ms) on {threads} threads: largest scene in this run ({big.Strands:N0} strands): **{big.MedianMs:F2} ms/frame**."));
+        foreach (var narrow in rows.FindAll(r => r.Path == "fast, 8-lane"))
+        {
+            var wide = rows.Find(r => r.Scene == narrow.Scene && r.Part == narrow.Part && r.Path == "fast" && r.Threads == narrow.Threads);
+            if (wide != null)
+                sb.AppendLine(string.Create(Inv, $"16-lane (AVX-512) paths vs the same fast path kept to 8 lanes, {narrow.Scene}, {narrow.Threads} thread{(narrow.Threads == 1 ? "" : "s")}: {narrow.MedianMs:F2} → {wide.MedianMs:F2} ms/frame (**{narrow.MedianMs / wide.MedianMs:F2}×**)."));
+        }
         sb.AppendLine("<!-- BENCH:END -->");
         string generated = sb.ToString();
 

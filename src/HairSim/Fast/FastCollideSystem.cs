@@ -16,6 +16,9 @@ public sealed class FastCollideSystem : IHairSystem
     /// <param name="allowWide">Use 16-lane chunks where the CPU has AVX-512 (same bits either way).</param>
     public FastCollideSystem(bool allowWide = true) => _wide = allowWide && ParticleRuns.WideAvailable;
 
+    /// <summary>Whether this instance runs 16-lane chunks.</summary>
+    internal bool UsesWide => _wide;
+
     public string Name => CollideSystem.SystemName;
     public SystemPhase Phase => SystemPhase.Substep;
 

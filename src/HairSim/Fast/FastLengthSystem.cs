@@ -37,7 +37,7 @@ public sealed partial class FastLengthSystem : IHairSystem
         _lanes = Halves * (allowWide && WideAvailable ? 16 : Vector<float>.Count);
     }
 
-    private static bool WideAvailable => Vector512.IsHardwareAccelerated && Avx512F.IsSupported && Transpose.Available;
+    private static bool WideAvailable => FastPathInfo.Avx512;
 
     /// <summary>Whether this instance sweeps 16-lane vectors.</summary>
     internal bool UsesWide => _lanes == Halves * 16;

@@ -5,17 +5,17 @@ namespace HairSim;
 /// <summary>Supplies the fast implementation of each core substep system (see <see cref="SolverPath.Fast"/>).</summary>
 internal static partial class FastPathRegistration
 {
-    static partial void ApplyFast(PipelineBuilder builder)
+    static partial void ApplyFast(PipelineBuilder builder, bool allowWide)
     {
         foreach (var f in builder.Factories.ToArray())
         {
             Func<HairScene, IHairSystem>? fast = f.Name switch
             {
                 HeadFollowSystem.SystemName => _ => new FastHeadFollowSystem(),
-                ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity),
+                ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide),
                 IntegrateSystem.SystemName => _ => new FastIntegrateSystem(),
-                LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity),
-                CollideSystem.SystemName => _ => new FastCollideSystem(),
+                LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide),
+                CollideSystem.SystemName => _ => new FastCollideSystem(allowWide),
                 _ => null,
             };
             if (fast != null) builder.Replace(f with { CreateFast = fast });

@@ -19,7 +19,7 @@ public sealed partial class FastShapeMatchSystem
 {
     private const int Wide = 16;
 
-    private static bool WideAvailable => Vector512.IsHardwareAccelerated && Avx512F.IsSupported && Vector<float>.Count == 8;
+    private static bool WideAvailable => FastPathInfo.Avx512;
 
     [SkipLocalsInit]
     [MethodImpl(MethodImplOptions.NoInlining)]

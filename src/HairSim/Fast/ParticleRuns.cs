@@ -30,7 +30,7 @@ internal interface IWideParticleKernel : IParticleKernel
 internal static class ParticleRuns
 {
     /// <summary>Whether this CPU runs <see cref="IWideParticleKernel.Chunk16"/> natively.</summary>
-    public static bool WideAvailable => System.Runtime.Intrinsics.Vector512.IsHardwareAccelerated && Vector<float>.Count == 8;
+    public static bool WideAvailable => FastPathInfo.Avx512;
 
     /// <summary>
     /// As <see cref="ForEachLive{TKernel}"/>, but whole 16-particle chunks go through the kernel's 16-lane chunk

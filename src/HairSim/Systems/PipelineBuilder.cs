@@ -32,7 +32,13 @@ public sealed class PipelineBuilder
     }
 
     /// <summary>The core systems of HairSim.</summary>
-    public static PipelineBuilder CreateDefault()
+    public static PipelineBuilder CreateDefault() => CreateDefault(allowAvx512: true);
+
+    /// <summary>
+    /// The core systems; with <paramref name="allowAvx512"/> false the fast systems keep to 8-lane (AVX) code even
+    /// on CPUs with AVX-512. Both give the same bits; this exists to measure and test the two against each other.
+    /// </summary>
+    public static PipelineBuilder CreateDefault(bool allowAvx512)
     {
         var b = new PipelineBuilder();
         b.Add(new SystemFactory(HeadFollowSystem.SystemName, SystemPhase.Substep, OrderHeadFollow,
@@ -48,7 +54,7 @@ public sealed class PipelineBuilder
             s => s.Colliders.Count > 0, _ => new CollideSystem()));
         b.Add(new SystemFactory(InterpolateSystem.SystemName, SystemPhase.FrameEnd, OrderInterpolate,
             s => s.Render != null, s => new InterpolateSystem(s)));
-        FastPathRegistration.Apply(b);
+        FastPathRegistration.Apply(b, allowAvx512);
         return b;
     }
 
@@ -70,6 +76,6 @@ public sealed class PipelineBuilder
 /// <summary>Hook for the optimised path to swap in its implementations (see FastPath).</summary>
 internal static partial class FastPathRegistration
 {
-    static partial void ApplyFast(PipelineBuilder builder);
-    public static void Apply(PipelineBuilder builder) => ApplyFast(builder);
+    static partial void ApplyFast(PipelineBuilder builder, bool allowWide);
+    public static void Apply(PipelineBuilder builder, bool allowWide) => ApplyFast(builder, allowWide);
 }

@@ -22,24 +22,6 @@ public class FastWidePathTests(ITestOutputHelper output)
         return d;
     }
 
-    /// <summary>The default pipeline with every fast system's 16-lane path turned off.</summary>
-    internal static PipelineBuilder NarrowOnly()
-    {
-        var b = PipelineBuilder.CreateDefault();
-        foreach (var f in b.Factories.ToArray())
-        {
-            Func<HairScene, IHairSystem>? narrow = f.Name switch
-            {
-                ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide: false),
-                CollideSystem.SystemName => _ => new FastCollideSystem(allowWide: false),
-                LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide: false),
-                _ => null,
-            };
-            if (narrow != null) b.Replace(f with { CreateFast = narrow });
-        }
-        return b;
-    }
-
     [Theory]
     [MemberData(nameof(Scenes))]
     public void WidePathGivesTheBitsOfTheNarrowPath(string scene)
@@ -48,7 +30,7 @@ public class FastWidePathTests(ITestOutputHelper output)
         var narrow = FastPathScenes.Build(scene, SolverPath.Fast);
         using var dispatcher = new ParallelDispatcher(2);
         var simW = new HairSimulation(wide, dispatcher: dispatcher);
-        var simN = new HairSimulation(narrow, NarrowOnly(), dispatcher);
+        var simN = new HairSimulation(narrow, PipelineBuilder.CreateDefault(allowAvx512: false), dispatcher);
         for (int f = 1; f <= 12; f++)
         {
             simW.Step(1f / 60f, FastPathScenes.HeadAt(f));
@@ -68,5 +50,11 @@ public class FastWidePathTests(ITestOutputHelper output)
         Assert.False(new FastShapeMatchSystem(16, allowWide: false).UsesWide);
         Assert.Equal(WideExpected, new FastLengthSystem(16).UsesWide);
         Assert.False(new FastLengthSystem(16, allowWide: false).UsesWide);
+        // The switch reaches every system that has a 16-lane path.
+        var scene = FastPathScenes.Build("straight", SolverPath.Fast);
+        var narrow = PipelineBuilder.CreateDefault(allowAvx512: false).Build(scene);
+        Assert.All(narrow.Systems, s => Assert.False(s is FastShapeMatchSystem { UsesWide: true } or FastLengthSystem { UsesWide: true } or FastCollideSystem { UsesWide: true }));
+        var wide = PipelineBuilder.CreateDefault().Build(scene);
+        Assert.Equal(WideExpected, wide.Systems.Any(s => s is FastCollideSystem { UsesWide: true }));
     }
 }
