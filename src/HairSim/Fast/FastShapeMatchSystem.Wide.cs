@@ -185,13 +185,7 @@ public sealed partial class FastShapeMatchSystem
     [MethodImpl(MethodImplOptions.NoInlining)]
     private static void WideDegenerate(HairWorld w, int first, int k0, Vector512<float> degenerate, in Params p, scoped StrandScratch scratch)
     {
-        var v = new StrandView
-        {
-            Px = ref Simd.At(w.PosX, first), Py = ref Simd.At(w.PosY, first), Pz = ref Simd.At(w.PosZ, first),
-            Rx = ref Simd.At(w.RestX, first), Ry = ref Simd.At(w.RestY, first), Rz = ref Simd.At(w.RestZ, first),
-            Sp = ref Simd.At(w.ShapePrev, first), Sm = ref Simd.At(w.ShapeMid, first),
-            Sn = ref Simd.At(w.ShapeNext, first), Sb = ref Simd.At(w.ShapeBend, first),
-        };
+        var v = View(w, first);
         for (int l = 0; l < Wide; l++)
             if (BitConverter.SingleToInt32Bits(degenerate.GetElement(l)) != 0)
                 ScalarTriple(ref v, k0 + l, bent: false, in p, scratch, ref scratch.Data[0]);
@@ -206,15 +200,7 @@ public sealed partial class FastShapeMatchSystem
         var scratch = new StrandScratch(size <= StrandScratch.StackFloats ? stackalloc float[size] : StrandScratch.Heap(size), _maxCapacity);
         if (n >= Vector<float>.Count + 2)
         {
-            var v = new StrandView
-            {
-                Px = ref Simd.At(w.PosX, first), Py = ref Simd.At(w.PosY, first), Pz = ref Simd.At(w.PosZ, first),
-                Vx = ref Simd.At(w.VelX, first), Vy = ref Simd.At(w.VelY, first), Vz = ref Simd.At(w.VelZ, first),
-                M = ref Simd.At(w.InvMass, first),
-                Rx = ref Simd.At(w.RestX, first), Ry = ref Simd.At(w.RestY, first), Rz = ref Simd.At(w.RestZ, first),
-                Sp = ref Simd.At(w.ShapePrev, first), Sm = ref Simd.At(w.ShapeMid, first),
-                Sn = ref Simd.At(w.ShapeNext, first), Sb = ref Simd.At(w.ShapeBend, first),
-            };
+            var v = View(w, first);
             Strand(ref v, w, first, n, padded: false, zeroSlots: true, in p, scratch);
         }
         else ShortStrand(w, first, n, in p, scratch);

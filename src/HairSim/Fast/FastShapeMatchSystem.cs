@@ -98,15 +98,7 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
             int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
             if (n >= width + 2)
             {
-                var v = new StrandView
-                {
-                    Px = ref Simd.At(w.PosX, first), Py = ref Simd.At(w.PosY, first), Pz = ref Simd.At(w.PosZ, first),
-                    Vx = ref Simd.At(w.VelX, first), Vy = ref Simd.At(w.VelY, first), Vz = ref Simd.At(w.VelZ, first),
-                    M = ref Simd.At(w.InvMass, first),
-                    Rx = ref Simd.At(w.RestX, first), Ry = ref Simd.At(w.RestY, first), Rz = ref Simd.At(w.RestZ, first),
-                    Sp = ref Simd.At(w.ShapePrev, first), Sm = ref Simd.At(w.ShapeMid, first),
-                    Sn = ref Simd.At(w.ShapeNext, first), Sb = ref Simd.At(w.ShapeBend, first),
-                };
+                var v = View(w, first);
                 Strand(ref v, w, first, n, padded: false, zeroSlots: n != zeroedFor, in p, scratch);
                 zeroedFor = n;
             }
@@ -117,6 +109,18 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
             }
         }
     }
+
+    /// <summary>Refs to strand data from particle <paramref name="first"/> on.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static StrandView View(HairWorld w, int first) => new()
+    {
+        Px = ref Simd.At(w.PosX, first), Py = ref Simd.At(w.PosY, first), Pz = ref Simd.At(w.PosZ, first),
+        Vx = ref Simd.At(w.VelX, first), Vy = ref Simd.At(w.VelY, first), Vz = ref Simd.At(w.VelZ, first),
+        M = ref Simd.At(w.InvMass, first),
+        Rx = ref Simd.At(w.RestX, first), Ry = ref Simd.At(w.RestY, first), Rz = ref Simd.At(w.RestZ, first),
+        Sp = ref Simd.At(w.ShapePrev, first), Sm = ref Simd.At(w.ShapeMid, first),
+        Sn = ref Simd.At(w.ShapeNext, first), Sb = ref Simd.At(w.ShapeBend, first),
+    };
 
     /// <summary>
     /// A strand shorter than Width + 2: work on a padded copy, write back only its live velocities. Kept out of

@@ -41,18 +41,8 @@ internal static class ParticleRuns
         if (!wide) { ForEachLive(w, begin, end, ref kernel); return; }
         int width = Vector<float>.Count;
         Span<float> tail = stackalloc float[10 * width];
-        int[] firsts = w.StrandFirst, counts = w.StrandParticleCount, caps = w.StrandCapacity;
-        int s = begin;
-        while (s < end)
+        for (int s = begin; NextRun(w, ref s, end, out int start, out int stop);)
         {
-            int start = firsts[s];
-            int stop = start + counts[s];
-            while (counts[s] == caps[s] && s + 1 < end)
-            {
-                s++;
-                stop = firsts[s] + counts[s];
-            }
-            s++;
             int i = start;
             ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
             ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
@@ -74,20 +64,28 @@ internal static class ParticleRuns
     {
         int width = Vector<float>.Count;
         Span<float> tail = stackalloc float[10 * width];
+        for (int s = begin; NextRun(w, ref s, end, out int start, out int stop);) Run(w, start, stop, ref kernel, tail);
+    }
+
+    /// <summary>
+    /// The next run of live particles from strand <paramref name="s"/> (advanced past it): a strand and the uncut
+    /// strands before it, which are contiguous with their successors. False when no strands are left.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static bool NextRun(HairWorld w, ref int s, int end, out int start, out int stop)
+    {
+        start = stop = 0;
+        if (s >= end) return false;
         int[] firsts = w.StrandFirst, counts = w.StrandParticleCount, caps = w.StrandCapacity;
-        int s = begin;
-        while (s < end)
+        start = firsts[s];
+        stop = start + counts[s];
+        while (counts[s] == caps[s] && s + 1 < end)
         {
-            int start = firsts[s];
-            int stop = start + counts[s];
-            while (counts[s] == caps[s] && s + 1 < end)
-            {
-                s++;
-                stop = firsts[s] + counts[s];
-            }
             s++;
-            Run(w, start, stop, ref kernel, tail);
+            stop = firsts[s] + counts[s];
         }
+        s++;
+        return true;
     }
 
     private static void Run<TKernel>(HairWorld w, int start, int stop, ref TKernel kernel, Span<float> tail) where TKernel : struct, IParticleKernel

@@ -15,15 +15,8 @@ namespace HairSim.Tests.Fast;
 /// </summary>
 public class FastWidePathTests(ITestOutputHelper output)
 {
-    public static TheoryData<string> Scenes()
-    {
-        var d = new TheoryData<string>();
-        foreach (var n in FastPathScenes.Names) d.Add(n);
-        return d;
-    }
-
     [Theory]
-    [MemberData(nameof(Scenes))]
+    [MemberData(nameof(FastVsReferenceTests.Scenes), MemberType = typeof(FastVsReferenceTests))]
     public void WidePathGivesTheBitsOfTheNarrowPath(string scene)
     {
         var wide = FastPathScenes.Build(scene, SolverPath.Fast);
