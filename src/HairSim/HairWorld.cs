@@ -240,7 +240,8 @@ public sealed class HairWorld
         for (int b = 0; b < src.Length; b++) Array.Copy(src[b], dst[b], src[b].Length);
         Array.Copy(StrandParticleCount, target.StrandParticleCount, StrandCount);
         target.Head = Head;
-        target.EditStamp = EditStamp + 1;
+        // Strictly newer than anything either world has had, so caches keyed on the target's stamp (the pipeline's reach) see the change.
+        target.EditStamp = Math.Max(target.EditStamp, EditStamp) + 1;
     }
 
     public bool SameLayout(HairWorld other) =>

@@ -103,4 +103,20 @@ public class PipelineTests
         var b = PipelineBuilder.CreateDefault();
         Assert.Throws<ArgumentException>(() => b.Add(new SystemFactory(IntegrateSystem.SystemName, SystemPhase.Substep, 1, _ => true, _ => new IntegrateSystem())));
     }
+
+    [Fact]
+    public void CopyingIntoAWorldAlwaysGivesItANewEditStamp()
+    {
+        // Caches keyed on a world's stamp (the pipeline's reach for the stability guards) must see every copy, even
+        // from a world whose own stamp is lower than the target's.
+        var source = new HairWorld(1, 2, 4);
+        var target = source.Clone();
+        for (int k = 0; k < 5; k++) target.MarkEdited();
+        int seen = target.EditStamp;
+        source.CopyTo(target);
+        Assert.True(target.EditStamp > seen, $"stamp {target.EditStamp} after a copy, {seen} before");
+        int again = target.EditStamp;
+        source.CopyTo(target);
+        Assert.NotEqual(again, target.EditStamp);
+    }
 }
