@@ -7,6 +7,9 @@ namespace HairSim;
 /// Strand s owns particles [StrandFirst[s], StrandFirst[s] + StrandCapacity[s]); the first
 /// StrandParticleCount[s] of them are live (a cut lowers the count, an undo or regrow raises it again).
 /// Arrays never change size after construction, so the simulation allocates nothing per step.
+/// Positions and velocities are the simulation's to write. Whoever writes the other arrays (masses, rest pose, rest
+/// shape, live counts) directly calls <see cref="MarkEdited"/> before the next step: systems may keep what they derive
+/// from them (which particles are pinned, and where) until the stamp changes. Edit commands and loaders do this.
 /// </summary>
 public sealed class HairWorld
 {
@@ -210,6 +213,7 @@ public sealed class HairWorld
         Head = head;
     }
 
+    /// <summary>Says that masses, rest pose, rest shape or live counts were written: caches derived from them are rebuilt.</summary>
     public void MarkEdited() => EditStamp++;
 
     /// <summary>Total rest length of the live part of all strands.</summary>

@@ -9,6 +9,25 @@ namespace HairSim.Fast;
 /// </summary>
 public sealed class FastHeadFollowSystem : IHairSystem
 {
+    /// <summary>Pins cached per strand; a strand with more goes through the SIMD kernel.</summary>
+    private const int MaxCachedPins = 2;
+
+    // Per strand: the world's edit stamp + 1 when its pins were cached (0: never), how many (or −1: too many), and
+    // their indices and rest positions, so a substep reads neither the masses nor the rest arrays.
+    private readonly long[] _cachedAt;
+    private readonly int[] _pinCount, _pinIndex;
+    private readonly float[] _pinRest;
+    private readonly bool _cache;
+
+    /// <param name="world">The world this system runs on (sizes the per-strand pin cache).</param>
+    /// <param name="cachePins">Cache each strand's pinned particles until the world is edited (off: scan every substep).</param>
+    public FastHeadFollowSystem(HairWorld world, bool cachePins = true)
+    {
+        _cache = cachePins;
+        int n = cachePins ? world.StrandCount : 0;
+        _cachedAt = new long[n]; _pinCount = new int[n]; _pinIndex = new int[n * MaxCachedPins]; _pinRest = new float[n * MaxCachedPins * 3];
+    }
+
     public string Name => HeadFollowSystem.SystemName;
     public SystemPhase Phase => SystemPhase.Substep;
 
@@ -17,8 +36,50 @@ public sealed class FastHeadFollowSystem : IHairSystem
         if (begin >= end) return;
         var w = scene.World;
         if (substep == 0 && ctx.Teleported) CarryRigidly(w, ctx.TeleportDelta, begin, end);
-        var kernel = new PinKernel(new PoseLanes(ctx.HeadAt(substep)));
-        ParticleRuns.ForEachLive(w, begin, end, ref kernel);
+        var pose = new PoseLanes(ctx.HeadAt(substep));
+        if (!_cache || _cachedAt.Length != w.StrandCount)
+        {
+            var all = new PinKernel(pose);
+            ParticleRuns.ForEachLive(w, begin, end, ref all);
+            return;
+        }
+        long stamp = w.EditStamp + 1L;
+        float[] px = w.PosX, py = w.PosY, pz = w.PosZ, vx = w.VelX, vy = w.VelY, vz = w.VelZ;
+        for (int s = begin; s < end; s++)
+        {
+            if (_cachedAt[s] != stamp) CachePins(w, s, stamp);
+            int count = _pinCount[s];
+            if (count < 0)
+            {
+                var kernel = new PinKernel(pose);
+                ParticleRuns.ForEachLive(w, s, s + 1, ref kernel);
+                continue;
+            }
+            for (int k = 0; k < count; k++)
+            {
+                int c = s * MaxCachedPins + k, i = _pinIndex[c];
+                // Same arithmetic, same order as the SIMD lanes of PinKernel.
+                var g = pose.Point(new Vector3(_pinRest[3 * c], _pinRest[3 * c + 1], _pinRest[3 * c + 2]));
+                px[i] = g.X; py[i] = g.Y; pz[i] = g.Z;
+                vx[i] = 0f; vy[i] = 0f; vz[i] = 0f;
+            }
+        }
+    }
+
+    /// <summary>Finds strand s's pinned live particles (InvMass = 0) and caches up to two with their rest positions.</summary>
+    private void CachePins(HairWorld w, int s, long stamp)
+    {
+        int first = w.StrandFirst[s], stop = first + w.StrandParticleCount[s], count = 0;
+        for (int i = first; i < stop; i++)
+        {
+            if (w.InvMass[i] != 0f) continue;
+            if (count == MaxCachedPins) { count = -1; break; }
+            int c = s * MaxCachedPins + count++;
+            _pinIndex[c] = i;
+            _pinRest[3 * c] = w.RestX[i]; _pinRest[3 * c + 1] = w.RestY[i]; _pinRest[3 * c + 2] = w.RestZ[i];
+        }
+        _pinCount[s] = count;
+        _cachedAt[s] = stamp;
     }
 
     private static void CarryRigidly(HairWorld w, in RigidTransform delta, int begin, int end)

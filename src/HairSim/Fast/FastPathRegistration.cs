@@ -11,7 +11,7 @@ internal static partial class FastPathRegistration
         {
             Func<HairScene, IHairSystem>? fast = f.Name switch
             {
-                HeadFollowSystem.SystemName => _ => new FastHeadFollowSystem(),
+                HeadFollowSystem.SystemName => s => new FastHeadFollowSystem(s.World),
                 ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide),
                 IntegrateSystem.SystemName => _ => new FastIntegrateSystem(),
                 LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide),

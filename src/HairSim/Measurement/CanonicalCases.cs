@@ -95,6 +95,7 @@ public static class CanonicalCases
         var w = new HairWorld(1, 1, StrandParticles);
         w.SetStrand(0, answer, pinned: 1);
         w.InvMass[StrandParticles - 1] = 0f;
+        w.MarkEdited();
         for (int k = 0; k < StrandParticles; k++) w.PosY[k] *= 0.5f;
         var scene = new HairScene(w, settings);
         Run(scene, hz, seconds, null);
