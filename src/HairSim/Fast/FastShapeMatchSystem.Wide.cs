@@ -7,8 +7,8 @@ namespace HairSim.Fast;
 
 /// <summary>
 /// The 16-lane (AVX-512) path of <see cref="FastShapeMatchSystem"/> for the common case: straight rest shape, no
-/// global stiffness, at least 16 particles. A 16-particle strand is one chunk of triples and one chunk of particles
-/// (the 8-lane path needs two of each plus an overlapping one). Triple chunks start at 1, 17, … and may read up to
+/// global stiffness, at least 16 particles. A 16-particle strand is one chunk of triples, entirely in registers
+/// (<see cref="Strand16"/>). Longer strands go through goal scratch: triple chunks start at 1, 17, … and may read up to
 /// 16 particles past the strand (another strand's data, possibly being written by another thread); those lanes are
 /// masked out and their goals stored as zero, so every goal slot a particle reads is either a real goal or zero and
 /// the sums need no masks. Velocity stores never leave the strand (the last particle chunk overlaps the previous
@@ -45,7 +45,8 @@ public sealed partial class FastShapeMatchSystem
         for (int s = begin; s < end; s++)
         {
             int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
-            if (n < Wide || first + n + Wide > length || HasBend(ref Simd.At(w.ShapeBend, first), n))
+            // Triple chunks start at k0 ≤ n and read particles up to k0 + 16: index first + n + 16 must exist.
+            if (n < Wide || first + n + Wide >= length || HasBend(ref Simd.At(w.ShapeBend, first), n))
             {
                 NarrowStrand(w, first, n, in p);
                 continue;
