@@ -248,6 +248,19 @@ public sealed class HairWorld
         target.EditStamp = Math.Max(target.EditStamp, EditStamp) + 1;
     }
 
+    /// <summary>
+    /// Copies only the simulated state (positions, velocities, head pose) into a world of identical layout whose
+    /// masses, rest pose and live counts already match: replays and benchmarks that restart from a saved moment.
+    /// Not an edit, so the target's stamp (and what systems cached from it) stays.
+    /// </summary>
+    public void CopyMotionTo(HairWorld target)
+    {
+        if (!SameLayout(target)) throw new ArgumentException("Worlds differ in layout.", nameof(target));
+        Array.Copy(PosX, target.PosX, PosX.Length); Array.Copy(PosY, target.PosY, PosY.Length); Array.Copy(PosZ, target.PosZ, PosZ.Length);
+        Array.Copy(VelX, target.VelX, VelX.Length); Array.Copy(VelY, target.VelY, VelY.Length); Array.Copy(VelZ, target.VelZ, VelZ.Length);
+        target.Head = Head;
+    }
+
     public bool SameLayout(HairWorld other) =>
         other.ParticleCount == ParticleCount && other.StrandCount == StrandCount && other.SheetCount == SheetCount &&
         StrandCapacity.AsSpan().SequenceEqual(other.StrandCapacity) && SheetStrandCount.AsSpan().SequenceEqual(other.SheetStrandCount);

@@ -69,14 +69,26 @@ public sealed class FastHeadFollowSystem : IHairSystem
     /// <summary>Finds strand s's pinned live particles (InvMass = 0) and caches up to two with their rest positions.</summary>
     private void CachePins(HairWorld w, int s, long stamp)
     {
-        int first = w.StrandFirst[s], stop = first + w.StrandParticleCount[s], count = 0;
-        for (int i = first; i < stop; i++)
+        int width = Vector<float>.Count;
+        int i = w.StrandFirst[s], stop = i + w.StrandParticleCount[s], count = 0;
+        ref float m = ref Simd.At(w.InvMass, 0);
+        for (; i < stop && count >= 0; i += width)
         {
-            if (w.InvMass[i] != 0f) continue;
-            if (count == MaxCachedPins) { count = -1; break; }
-            int c = s * MaxCachedPins + count++;
-            _pinIndex[c] = i;
-            _pinRest[3 * c] = w.RestX[i]; _pinRest[3 * c + 1] = w.RestY[i]; _pinRest[3 * c + 2] = w.RestZ[i];
+            // Whole chunks by SIMD compare; the strand's last partial chunk lane by lane (never read past it).
+            uint bits;
+            if (i + width <= stop) bits = Simd.MaskBits(Vector.Equals(Simd.Ld(ref m, i), Vector<float>.Zero));
+            else
+            {
+                bits = 0;
+                for (int l = 0; l < stop - i; l++) if (Unsafe.Add(ref m, i + l) == 0f) bits |= 1u << l;
+            }
+            for (; bits != 0 && count >= 0; bits &= bits - 1)
+            {
+                if (count == MaxCachedPins) { count = -1; break; }
+                int p = i + BitOperations.TrailingZeroCount(bits), c = s * MaxCachedPins + count++;
+                _pinIndex[c] = p;
+                _pinRest[3 * c] = w.RestX[p]; _pinRest[3 * c + 1] = w.RestY[p]; _pinRest[3 * c + 2] = w.RestZ[p];
+            }
         }
         _pinCount[s] = count;
         _cachedAt[s] = stamp;

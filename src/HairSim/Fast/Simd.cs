@@ -50,6 +50,17 @@ internal static class Simd
         return Vector<float>.One / Vector.SquareRoot(x);
     }
 
+    /// <summary>One bit per lane of a mask, lane 0 in bit 0.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static uint MaskBits(Vector<int> mask)
+    {
+        if (Vector<int>.Count == 8) return mask.AsVector256().ExtractMostSignificantBits();
+        if (Vector<int>.Count == 4) return mask.AsVector128().ExtractMostSignificantBits();
+        uint bits = 0;
+        for (int l = 0; l < Vector<int>.Count && l < 32; l++) if (mask[l] != 0) bits |= 1u << l;
+        return bits;
+    }
+
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector<float> Sel(Vector<int> mask, Vector<float> ifTrue, Vector<float> ifFalse) =>
         Vector.ConditionalSelect(mask, ifTrue, ifFalse);

@@ -119,4 +119,24 @@ public class PipelineTests
         source.CopyTo(target);
         Assert.NotEqual(again, target.EditStamp);
     }
+
+    [Fact]
+    public void CopyingMotionKeepsTheStampAndCopiesOnlyTheSimulatedState()
+    {
+        var scene = GroomBuilder.BuildScene(TestWorlds.SmallGroom(), new SimulationSettings());
+        var sim = new HairSimulation(scene);
+        var saved = scene.World.Clone();
+        for (int f = 1; f <= 5; f++) sim.Step(1f / 60f, new RigidTransform(System.Numerics.Vector3.Zero, System.Numerics.Quaternion.CreateFromYawPitchRoll(0.1f * f, 0, 0)));
+        int stamp = scene.World.EditStamp;
+        float mass = scene.World.InvMass[5];
+        scene.World.InvMass[5] = 0.5f; // not motion: must survive the copy
+        saved.CopyMotionTo(scene.World);
+        Assert.Equal(stamp, scene.World.EditStamp);
+        Assert.Equal(saved.Head, scene.World.Head);
+        Assert.Equal(saved.PosX, scene.World.PosX);
+        Assert.Equal(saved.VelZ, scene.World.VelZ);
+        Assert.Equal(0.5f, scene.World.InvMass[5]);
+        scene.World.InvMass[5] = mass;
+        Assert.Throws<ArgumentException>(() => saved.CopyMotionTo(new HairWorld(1, 1, 4)));
+    }
 }
