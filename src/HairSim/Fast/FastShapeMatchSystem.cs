@@ -1,5 +1,7 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Runtime.Intrinsics;
+using System.Runtime.Intrinsics.X86;
 
 namespace HairSim.Fast;
 
@@ -26,11 +28,17 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
 
     /// <param name="maxStrandCapacity">The longest strand's capacity (sizes the per-thread scratch).</param>
     /// <param name="allowWide">Use the 16-lane AVX-512 path where the CPU has it (tests turn it off to check the 8-lane path).</param>
-    public FastShapeMatchSystem(int maxStrandCapacity, bool allowWide = true)
+    public FastShapeMatchSystem(int maxStrandCapacity, bool allowWide = true) : this(maxStrandCapacity, allowWide, registerStrands: true) { }
+
+    /// <param name="registerStrands">Let the 8-lane path shape-match 16-particle strands in registers (tests compare it with the goal-scratch path).</param>
+    internal FastShapeMatchSystem(int maxStrandCapacity, bool allowWide, bool registerStrands)
     {
         _maxCapacity = maxStrandCapacity;
         _wide = allowWide && WideAvailable;
+        _registers = registerStrands && Avx2.IsSupported && Vector<float>.Count == 8;
     }
+
+    private readonly bool _registers;
 
     /// <summary>Whether this instance takes the 16-lane path for the strands it can.</summary>
     internal bool UsesWide => _wide;
@@ -93,9 +101,12 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
         Span<float> d = scratch.Data;
         // Goal slots no long strand's triple writes stay zero from one strand to the next of the same length.
         int zeroedFor = -1;
+        bool registers = _registers && p.Beta == 0f && p.Alpha > 0f;
+        int length = w.PosX.Length;
         for (int s = begin; s < end; s++)
         {
             int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
+            if (n == 16 && registers && first >= 1 && first + 17 < length && Strand16Narrow(w, first, in p)) continue;
             if (n >= width + 2)
             {
                 var v = View(w, first);

@@ -34,6 +34,41 @@ public class FastWidePathTests(ITestOutputHelper output)
         output.WriteLine($"{scene}: 16-lane paths {(WideExpected ? "on" : "not available on this CPU")}");
     }
 
+    /// <summary>The 8-lane path with its register-only 16-particle strands on or off (everything else 8-lane too).</summary>
+    private static PipelineBuilder Narrow(bool registerStrands)
+    {
+        var b = PipelineBuilder.CreateDefault(allowAvx512: false);
+        foreach (var f in b.Factories.ToArray())
+            if (f.Name == ShapeMatchSystem.SystemName)
+                b.Replace(f with { CreateFast = s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide: false, registerStrands) });
+        return b;
+    }
+
+    [Theory]
+    [MemberData(nameof(FastVsReferenceTests.Scenes), MemberType = typeof(FastVsReferenceTests))]
+    public void RegisterStrandsGiveTheBitsOfTheGoalScratch(string scene)
+    {
+        var registers = FastPathScenes.Build(scene, SolverPath.Fast);
+        var scratch = FastPathScenes.Build(scene, SolverPath.Fast);
+        foreach (var w in new[] { registers.World, scratch.World })
+        {
+            // A triple whose ends coincide in a straight 16-particle strand that is not the world's first: the
+            // register path must hand it to the general path (the reference's fallback axis).
+            int f3 = w.StrandFirst[3];
+            if (w.StrandParticleCount[3] == 16) w.SetPosition(f3 + 6, w.GetPosition(f3 + 4));
+        }
+        var simR = new HairSimulation(registers, Narrow(registerStrands: true));
+        var simS = new HairSimulation(scratch, Narrow(registerStrands: false));
+        for (int f = 1; f <= 12; f++)
+        {
+            simR.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simS.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            Assert.True(registers.World.BitEquals(scratch.World), $"{scene}: the paths differ after frame {f}");
+        }
+        Assert.Equal(0, registers.World.CountNonFinite());
+        Assert.False(FastPathScenes.Build(scene, SolverPath.Fast).World.BitEquals(registers.World));
+    }
+
     private static bool WideExpected => Vector512.IsHardwareAccelerated && Avx512F.IsSupported && System.Numerics.Vector<float>.Count == 8;
 
     [Fact]
