@@ -12,7 +12,7 @@ internal static partial class FastPathRegistration
             Func<HairScene, IHairSystem>? fast = f.Name switch
             {
                 HeadFollowSystem.SystemName => s => new FastHeadFollowSystem(s.World),
-                ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide),
+                ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide, s.World),
                 IntegrateSystem.SystemName => _ => new FastIntegrateSystem(),
                 LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide),
                 CollideSystem.SystemName => _ => new FastCollideSystem(allowWide),

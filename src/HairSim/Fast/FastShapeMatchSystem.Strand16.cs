@@ -14,11 +14,10 @@ namespace HairSim.Fast;
 /// </summary>
 public sealed partial class FastShapeMatchSystem
 {
-    /// <summary>Returns false (nothing written) for a bent strand or a triple whose ends coincide: the caller takes the general path.</summary>
+    /// <summary>A straight strand; returns false (nothing written) if a triple's ends coincide: the caller takes the general path.</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
     private static bool Strand16Narrow(HairWorld w, int first, in Params p)
     {
-        if (HasBend(ref Simd.At(w.ShapeBend, first), 16)) return false;
         var third = new Vector<float>(1f / 3f);
         var eps2 = new Vector<float>(1e-24f);
         // Triples 1 … 14 exist: lanes 1 … 7 of the first half, 0 … 6 of the second.

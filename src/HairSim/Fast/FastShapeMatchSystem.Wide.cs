@@ -46,7 +46,7 @@ public sealed partial class FastShapeMatchSystem
         {
             int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
             // Triple chunks start at k0 ≤ n and read particles up to k0 + 16: index first + n + 16 must exist.
-            if (n < Wide || first + n + Wide >= length || HasBend(ref Simd.At(w.ShapeBend, first), n))
+            if (n < Wide || first + n + Wide >= length || Bent(w, s, first, n))
             {
                 NarrowStrand(w, first, n, in p);
                 continue;

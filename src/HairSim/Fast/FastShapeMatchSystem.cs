@@ -28,14 +28,37 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
 
     /// <param name="maxStrandCapacity">The longest strand's capacity (sizes the per-thread scratch).</param>
     /// <param name="allowWide">Use the 16-lane AVX-512 path where the CPU has it (tests turn it off to check the 8-lane path).</param>
-    public FastShapeMatchSystem(int maxStrandCapacity, bool allowWide = true) : this(maxStrandCapacity, allowWide, registerStrands: true) { }
+    /// <param name="world">The world it will run on, if known: then whether each strand's rest shape is bent is cached until the world is edited.</param>
+    public FastShapeMatchSystem(int maxStrandCapacity, bool allowWide = true, HairWorld? world = null)
+        : this(maxStrandCapacity, allowWide, registerStrands: true, world) { }
 
     /// <param name="registerStrands">Let the 8-lane path shape-match 16-particle strands in registers (tests compare it with the goal-scratch path).</param>
-    internal FastShapeMatchSystem(int maxStrandCapacity, bool allowWide, bool registerStrands)
+    internal FastShapeMatchSystem(int maxStrandCapacity, bool allowWide, bool registerStrands, HairWorld? world = null)
     {
         _maxCapacity = maxStrandCapacity;
         _wide = allowWide && WideAvailable;
         _registers = registerStrands && Avx2.IsSupported && Vector<float>.Count == 8;
+        int n = world?.StrandCount ?? 0;
+        _bentAt = new long[n];
+        _bent = new bool[n];
+    }
+
+    // Per strand: the world's edit stamp + 1 when its bend flag was found (0: never), and the flag.
+    private readonly long[] _bentAt;
+    private readonly bool[] _bent;
+
+    /// <summary>Whether strand s (live count n) has a bent rest shape; cached per strand until the world's next edit.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private bool Bent(HairWorld w, int s, int first, int n)
+    {
+        if ((uint)s >= (uint)_bentAt.Length) return HasBend(ref Simd.At(w.ShapeBend, first), n);
+        long stamp = w.EditStamp + 1L;
+        if (_bentAt[s] != stamp)
+        {
+            _bent[s] = HasBend(ref Simd.At(w.ShapeBend, first), n);
+            _bentAt[s] = stamp;
+        }
+        return _bent[s];
     }
 
     private readonly bool _registers;
@@ -106,7 +129,7 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
         for (int s = begin; s < end; s++)
         {
             int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
-            if (n == 16 && registers && first >= 1 && first + 17 < length && Strand16Narrow(w, first, in p)) continue;
+            if (n == 16 && registers && first >= 1 && first + 17 < length && !Bent(w, s, first, n) && Strand16Narrow(w, first, in p)) continue;
             if (n >= width + 2)
             {
                 var v = View(w, first);

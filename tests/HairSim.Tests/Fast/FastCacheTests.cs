@@ -5,11 +5,11 @@ using HairSim.Fast;
 namespace HairSim.Tests.Fast;
 
 /// <summary>
-/// The fast head follow caches each strand's pinned particles (up to two, with their rest positions) until the
-/// world's edit stamp changes. Pins changed between frames (and marked) must be followed, strands with more pins take
-/// the scanning kernel, and either way the bits equal a run that scans every substep.
+/// What the fast systems cache until the world's edit stamp changes: head follow, each strand's pinned particles (up
+/// to two, with their rest positions); shape matching, whether each strand's rest shape is bent. Edits between frames
+/// (marked) must be followed, and the bits must equal runs without the caches.
 /// </summary>
-public class FastHeadFollowCacheTests
+public class FastCacheTests
 {
     private static PipelineBuilder Scanning()
     {
@@ -66,5 +66,34 @@ public class FastHeadFollowCacheTests
             Assert.Equal(Vector3.Zero, scene.World.GetVelocity(tip));
         }
         Assert.True(FastPathScenes.MaxPositionDifference(reference.World, scene.World) < FastVsReferenceTests.FramePositionTolerance);
+    }
+
+    [Fact]
+    public void RestShapeBentBetweenFramesIsFollowed()
+    {
+        var g = new GroomSettings { SheetCount = 4, StrandsPerSheet = 6, ParticlesPerStrand = 16 };
+        var fast = GroomBuilder.BuildScene(g, new SimulationSettings());
+        var reference = GroomBuilder.BuildScene(g, new SimulationSettings { Path = SolverPath.Reference });
+        var uncached = GroomBuilder.BuildScene(g, new SimulationSettings());
+        var b = PipelineBuilder.CreateDefault();
+        foreach (var f in b.Factories.ToArray())
+            if (f.Name == ShapeMatchSystem.SystemName) b.Replace(f with { CreateFast = s => new FastShapeMatchSystem(s.World.MaxStrandCapacity) });
+        var sims = new[] { new HairSimulation(fast), new HairSimulation(reference), new HairSimulation(uncached, b) };
+        for (int f = 1; f <= 3; f++) foreach (var sim in sims) sim.Step(1f / 60f, FastPathScenes.HeadAt(f, teleport: false));
+        // Curl strand 2's rest shape (SetStrand marks the world edited), as a fit would.
+        foreach (var w in new[] { fast.World, reference.World, uncached.World })
+        {
+            int first = w.StrandFirst[2];
+            var root = w.GetRest(first);
+            var dir = Vector3.Normalize(w.GetRest(first + 1) - root);
+            var side = Vector3.Normalize(Vector3.Cross(dir, Vector3.UnitZ));
+            var pts = new Vector3[16];
+            for (int k = 0; k < 16; k++) pts[k] = root + dir * (0.016f * k) + side * (0.01f * (1 - MathF.Cos(0.5f * k)));
+            w.SetStrand(2, pts, pinned: 1);
+        }
+        Assert.NotEqual(0f, fast.World.ShapeBend[fast.World.StrandFirst[2] + 5]);
+        for (int f = 4; f <= 8; f++) foreach (var sim in sims) sim.Step(1f / 60f, FastPathScenes.HeadAt(f, teleport: false));
+        Assert.True(fast.World.BitEquals(uncached.World), "the cached bend flags changed the result");
+        Assert.True(FastPathScenes.MaxPositionDifference(reference.World, fast.World) < FastVsReferenceTests.FramePositionTolerance);
     }
 }
