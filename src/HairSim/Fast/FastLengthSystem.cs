@@ -8,10 +8,10 @@ namespace HairSim.Fast;
 /// <summary>
 /// Fast <see cref="LengthSystem"/> in float. Follow-the-leader is a chain along each strand (particle k needs
 /// particle k−1 already corrected), so it cannot be vectorised along the strand; it is vectorised across
-/// strands instead: 2 × Width strands are transposed into a small per-thread tile (row k = particle k of each
-/// strand, as two SIMD vectors), swept root to tip together, and written back. Two independent vectors per row
-/// let the CPU overlap two dependency chains (sqrt and divide latency). PBD runs the same way with its
-/// Gauss–Seidel sweeps. Lanes past a strand's live count, and padding lanes of the last group, are masked out
+/// strands instead: 16 strands (32 with AVX-512, see FastLengthSystem.Wide.cs) are transposed into a small
+/// per-thread tile (row k = particle k of each strand, as two SIMD vectors), swept root to tip together, and written
+/// back. Two independent vectors per row let the CPU overlap two dependency chains (square root latency). PBD runs
+/// the same way with its Gauss–Seidel sweeps (8 lanes at a time, whatever the tile width). Lanes past a strand's live count, and padding lanes of the last group, are masked out
 /// (InvMass 0).
 /// </summary>
 public sealed partial class FastLengthSystem : IHairSystem
