@@ -129,14 +129,19 @@ internal static class FastPathScenes
         return new RigidTransform(shift + shake.Position, shake.Rotation);
     }
 
-    public static float MaxPositionDifference(HairWorld a, HairWorld b)
+    public static float MaxPositionDifference(HairWorld a, HairWorld b) => MaxDifference(a, b, static (w, i) => w.GetPosition(i));
+
+    public static float MaxVelocityDifference(HairWorld a, HairWorld b) => MaxDifference(a, b, static (w, i) => w.GetVelocity(i));
+
+    /// <summary>Largest distance between a's and b's value of one per-particle vector over a's live particles.</summary>
+    private static float MaxDifference(HairWorld a, HairWorld b, Func<HairWorld, int, Vector3> value)
     {
         float max = 0f;
         for (int s = 0; s < a.StrandCount; s++)
         {
             int first = a.StrandFirst[s];
             for (int i = first; i < first + a.StrandParticleCount[s]; i++)
-                max = MathF.Max(max, Vector3.Distance(a.GetPosition(i), b.GetPosition(i)));
+                max = MathF.Max(max, Vector3.Distance(value(a, i), value(b, i)));
         }
         return max;
     }
@@ -168,15 +173,4 @@ internal static class FastPathScenes
         return sum / Math.Max(1, count);
     }
 
-    public static float MaxVelocityDifference(HairWorld a, HairWorld b)
-    {
-        float max = 0f;
-        for (int s = 0; s < a.StrandCount; s++)
-        {
-            int first = a.StrandFirst[s];
-            for (int i = first; i < first + a.StrandParticleCount[s]; i++)
-                max = MathF.Max(max, Vector3.Distance(a.GetVelocity(i), b.GetVelocity(i)));
-        }
-        return max;
-    }
 }
