@@ -23,6 +23,7 @@ public sealed class FastHeadFollowSystem : IHairSystem
     /// <param name="cachePins">Cache each strand's pinned particles until the world is edited (off: scan every substep).</param>
     public FastHeadFollowSystem(HairWorld world, bool cachePins = true)
     {
+        ArgumentNullException.ThrowIfNull(world);
         _cache = cachePins;
         int n = cachePins ? world.StrandCount : 0;
         _cachedAt = new long[n]; _pinCount = new int[n]; _pinIndex = new int[n * MaxCachedPins]; _pinRest = new float[n * MaxCachedPins * 3];
