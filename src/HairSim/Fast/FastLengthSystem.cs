@@ -155,7 +155,9 @@ public sealed partial class FastLengthSystem : IHairSystem
         if (rows == 16)
         {
             // The common strand length: constant strides let the JIT fold every row address into the instruction.
-            for (int g = 0; g < lanes; g += 16) Transpose.In16(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
+            // A 32-lane tile exists only with AVX-512, which transposes 16 × 16 in registers.
+            if (lanes == 32) for (int g = 0; g < lanes; g += 16) Transpose.In16Wide(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
+            else for (int g = 0; g < lanes; g += 16) Transpose.In16(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
             return;
         }
         for (int g = 0; g < lanes; g += 8)
@@ -174,7 +176,12 @@ public sealed partial class FastLengthSystem : IHairSystem
         {
             for (int g = 0; g < lanes; g += 16)
             {
-                if (add) Transpose.Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: true);
+                if (lanes == 32)
+                {
+                    if (add) Transpose.Out16Wide(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: true);
+                    else Transpose.Out16Wide(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
+                }
+                else if (add) Transpose.Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: true);
                 else Transpose.Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
             }
             return;

@@ -8,7 +8,7 @@ namespace HairSim.Fast;
 public static class FastPathInfo
 {
     /// <summary>
-    /// True when the 16-lane (AVX-512) paths of shape matching, length and collide are used by default: 512-bit
+    /// True when the 16-lane (AVX-512) paths of shape matching, integrate, length and collide are used by default: 512-bit
     /// vectors run natively and <see cref="Vector{T}"/> is 8 floats wide (the 8-lane code they mirror).
     /// </summary>
     public static bool Avx512 => Vector512.IsHardwareAccelerated && Avx512F.IsSupported && Avx.IsSupported && Vector<float>.Count == 8;

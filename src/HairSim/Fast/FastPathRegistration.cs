@@ -13,7 +13,7 @@ internal static partial class FastPathRegistration
             {
                 HeadFollowSystem.SystemName => s => new FastHeadFollowSystem(s.World),
                 ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide, s.World),
-                IntegrateSystem.SystemName => _ => new FastIntegrateSystem(),
+                IntegrateSystem.SystemName => _ => new FastIntegrateSystem(allowWide),
                 LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide),
                 CollideSystem.SystemName => _ => new FastCollideSystem(allowWide),
                 _ => null,

@@ -7,7 +7,8 @@ namespace HairSim.Fast;
 /// <summary>
 /// 8 × 8 float transposes with AVX shuffles: how the fast length pass turns 8 consecutive strands (particles
 /// contiguous per strand) into a tile where row k holds particle k of each strand, and back. About 24 shuffles per
-/// 64 floats instead of 64 scalar loads and stores.
+/// 64 floats instead of 64 scalar loads and stores. With AVX-512, 16 strands of 16 particles are transposed as one
+/// 16 × 16 block in registers (<see cref="In16Wide"/>, <see cref="Out16Wide"/>).
 /// </summary>
 internal static class Transpose
 {
@@ -27,6 +28,88 @@ internal static class Transpose
         Block8(ref Unsafe.Add(ref strands, 8 * 16), 16, ref Unsafe.Add(ref tile, 8), lanes);
         Block8(ref Unsafe.Add(ref strands, 8 * 16 + 8), 16, ref Unsafe.Add(ref tile, 8 * lanes + 8), lanes);
     }
+
+    /// <summary>
+    /// <see cref="In16"/> with AVX-512: one 16 × 16 transpose in registers (64 shuffles per 256 floats instead of
+    /// 96 for four 8 × 8 blocks, and 16 loads and stores of 64 bytes instead of 32 of 32 bytes).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    public static void In16Wide(ref float strands, ref float tile, int lanes)
+    {
+        Block16(ref strands, 16, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
+            out var o8, out var o9, out var o10, out var o11, out var o12, out var o13, out var o14, out var o15);
+        St16(ref tile, 0, o0); St16(ref tile, lanes, o1); St16(ref tile, 2 * lanes, o2); St16(ref tile, 3 * lanes, o3);
+        St16(ref tile, 4 * lanes, o4); St16(ref tile, 5 * lanes, o5); St16(ref tile, 6 * lanes, o6); St16(ref tile, 7 * lanes, o7);
+        St16(ref tile, 8 * lanes, o8); St16(ref tile, 9 * lanes, o9); St16(ref tile, 10 * lanes, o10); St16(ref tile, 11 * lanes, o11);
+        St16(ref tile, 12 * lanes, o12); St16(ref tile, 13 * lanes, o13); St16(ref tile, 14 * lanes, o14); St16(ref tile, 15 * lanes, o15);
+    }
+
+    /// <summary>The inverse of <see cref="In16Wide"/>; with <paramref name="add"/> the tile is added to the strands.</summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    public static void Out16Wide(ref float tile, int lanes, ref float strands, bool add)
+    {
+        Block16(ref tile, lanes, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
+            out var o8, out var o9, out var o10, out var o11, out var o12, out var o13, out var o14, out var o15);
+        Put16(ref strands, 0, o0, add); Put16(ref strands, 16, o1, add); Put16(ref strands, 32, o2, add); Put16(ref strands, 48, o3, add);
+        Put16(ref strands, 64, o4, add); Put16(ref strands, 80, o5, add); Put16(ref strands, 96, o6, add); Put16(ref strands, 112, o7, add);
+        Put16(ref strands, 128, o8, add); Put16(ref strands, 144, o9, add); Put16(ref strands, 160, o10, add); Put16(ref strands, 176, o11, add);
+        Put16(ref strands, 192, o12, add); Put16(ref strands, 208, o13, add); Put16(ref strands, 224, o14, add); Put16(ref strands, 240, o15, add);
+    }
+
+    /// <summary>
+    /// Rows src[i·stride … +15] (i = 0 … 15) transposed: o_j[i] = src[i·stride + j]. Unpack and shufps build 4 × 4
+    /// blocks inside each 128-bit lane; two rounds of 128-bit lane shuffles put the blocks in place.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Block16(ref float src, int stride,
+        out Vector512<float> o0, out Vector512<float> o1, out Vector512<float> o2, out Vector512<float> o3,
+        out Vector512<float> o4, out Vector512<float> o5, out Vector512<float> o6, out Vector512<float> o7,
+        out Vector512<float> o8, out Vector512<float> o9, out Vector512<float> o10, out Vector512<float> o11,
+        out Vector512<float> o12, out Vector512<float> o13, out Vector512<float> o14, out Vector512<float> o15)
+    {
+        // Rows 4a … 4a+3 → u[4a + b], whose 128-bit lane k holds column 4k + b of those rows.
+        Quad(ref src, stride, 0, out var u0, out var u1, out var u2, out var u3);
+        Quad(ref src, stride, 4, out var u4, out var u5, out var u6, out var u7);
+        Quad(ref src, stride, 8, out var u8, out var u9, out var u10, out var u11);
+        Quad(ref src, stride, 12, out var u12, out var u13, out var u14, out var u15);
+        Lanes(u0, u4, u8, u12, out o0, out o4, out o8, out o12);
+        Lanes(u1, u5, u9, u13, out o1, out o5, out o9, out o13);
+        Lanes(u2, u6, u10, u14, out o2, out o6, out o10, out o14);
+        Lanes(u3, u7, u11, u15, out o3, out o7, out o11, out o15);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Quad(ref float src, int stride, int row, out Vector512<float> u0, out Vector512<float> u1, out Vector512<float> u2, out Vector512<float> u3)
+    {
+        var r0 = Ld16(ref src, row * stride); var r1 = Ld16(ref src, (row + 1) * stride);
+        var r2 = Ld16(ref src, (row + 2) * stride); var r3 = Ld16(ref src, (row + 3) * stride);
+        var t0 = Avx512F.UnpackLow(r0, r1); var t1 = Avx512F.UnpackHigh(r0, r1);
+        var t2 = Avx512F.UnpackLow(r2, r3); var t3 = Avx512F.UnpackHigh(r2, r3);
+        u0 = Avx512F.Shuffle(t0, t2, 0x44); u1 = Avx512F.Shuffle(t0, t2, 0xEE);
+        u2 = Avx512F.Shuffle(t1, t3, 0x44); u3 = Avx512F.Shuffle(t1, t3, 0xEE);
+    }
+
+    /// <summary>From u[b], u[4+b], u[8+b], u[12+b]: columns b, 4+b, 8+b, 12+b, all 16 rows.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Lanes(Vector512<float> a, Vector512<float> b, Vector512<float> c, Vector512<float> d,
+        out Vector512<float> col0, out Vector512<float> col4, out Vector512<float> col8, out Vector512<float> col12)
+    {
+        var p0 = Avx512F.Shuffle4x128(a, b, 0x88); var p1 = Avx512F.Shuffle4x128(a, b, 0xDD);
+        var q0 = Avx512F.Shuffle4x128(c, d, 0x88); var q1 = Avx512F.Shuffle4x128(c, d, 0xDD);
+        col0 = Avx512F.Shuffle4x128(p0, q0, 0x88); col8 = Avx512F.Shuffle4x128(p0, q0, 0xDD);
+        col4 = Avx512F.Shuffle4x128(p1, q1, 0x88); col12 = Avx512F.Shuffle4x128(p1, q1, 0xDD);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Put16(ref float r, int i, Vector512<float> v, bool add) => St16(ref r, i, add ? Avx512F.Add(Ld16(ref r, i), v) : v);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector512<float> Ld16(ref float r, int i) =>
+        Unsafe.ReadUnaligned<Vector512<float>>(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)));
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void St16(ref float r, int i, Vector512<float> v) =>
+        Unsafe.WriteUnaligned(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)), v);
 
     /// <summary>The inverse of <see cref="In16"/>; with <paramref name="add"/> the tile is added to the strands.</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]

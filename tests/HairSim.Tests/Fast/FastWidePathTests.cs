@@ -78,11 +78,14 @@ public class FastWidePathTests(ITestOutputHelper output)
         Assert.False(new FastShapeMatchSystem(16, allowWide: false).UsesWide);
         Assert.Equal(WideExpected, new FastLengthSystem(16).UsesWide);
         Assert.False(new FastLengthSystem(16, allowWide: false).UsesWide);
+        Assert.Equal(WideExpected, new FastIntegrateSystem().UsesWide);
+        Assert.False(new FastIntegrateSystem(allowWide: false).UsesWide);
         // The switch reaches every system that has a 16-lane path.
         var scene = FastPathScenes.Build("straight", SolverPath.Fast);
         var narrow = PipelineBuilder.CreateDefault(allowAvx512: false).Build(scene);
-        Assert.All(narrow.Systems, s => Assert.False(s is FastShapeMatchSystem { UsesWide: true } or FastLengthSystem { UsesWide: true } or FastCollideSystem { UsesWide: true }));
+        Assert.All(narrow.Systems, s => Assert.False(s is FastShapeMatchSystem { UsesWide: true } or FastLengthSystem { UsesWide: true } or FastCollideSystem { UsesWide: true } or FastIntegrateSystem { UsesWide: true }));
         var wide = PipelineBuilder.CreateDefault().Build(scene);
         Assert.Equal(WideExpected, wide.Systems.Any(s => s is FastCollideSystem { UsesWide: true }));
+        Assert.Equal(WideExpected, wide.Systems.Any(s => s is FastIntegrateSystem { UsesWide: true }));
     }
 }

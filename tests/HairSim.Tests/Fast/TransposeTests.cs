@@ -1,0 +1,58 @@
+using HairSim.Fast;
+
+namespace HairSim.Tests.Fast;
+
+/// <summary>The length pass's transposes against their definition: tile[k·lanes + l] = strand l's particle k.</summary>
+public class TransposeTests
+{
+    private const int Lanes = 32;
+
+    private static float[] Strands()
+    {
+        var s = new float[16 * 16 + 16];
+        for (int i = 0; i < s.Length; i++) s[i] = i * 1.5f - 7f;
+        return s;
+    }
+
+    [Fact]
+    public void In16MovesParticleKOfStrandLToRowKColumnL()
+    {
+        if (!Transpose.Available) { Assert.False(new FastLengthSystem(16).UsesWide); return; } // the scalar copy is used instead
+        var s = Strands();
+        var tile = new float[16 * Lanes];
+        Transpose.In16(ref s[0], ref tile[16], Lanes);
+        for (int l = 0; l < 16; l++)
+            for (int k = 0; k < 16; k++)
+                Assert.Equal(s[l * 16 + k], tile[k * Lanes + 16 + l]);
+        Assert.All(Enumerable.Range(0, 16), k => Assert.Equal(0f, tile[k * Lanes])); // other columns untouched
+    }
+
+    [Fact]
+    public void In16WideGivesTheTileOfIn16()
+    {
+        if (!FastPathInfo.Avx512) { Assert.False(new FastLengthSystem(16).UsesWide); return; } // only 32-lane tiles use it
+        var s = Strands();
+        var a = new float[16 * Lanes]; var b = new float[16 * Lanes];
+        Transpose.In16(ref s[0], ref a[16], Lanes);
+        Transpose.In16Wide(ref s[0], ref b[16], Lanes);
+        Assert.Equal(a, b);
+        Assert.Contains(a, v => v != 0f);
+    }
+
+    [Theory]
+    [InlineData(false)]
+    [InlineData(true)]
+    public void Out16WideInvertsIn16WideAndAddsWhenAsked(bool add)
+    {
+        if (!FastPathInfo.Avx512) { Assert.False(new FastLengthSystem(16).UsesWide); return; } // only 32-lane tiles use it
+        var s = Strands();
+        var tile = new float[16 * Lanes];
+        Transpose.In16Wide(ref s[0], ref tile[16], Lanes);
+        var back = new float[16 * 16 + 16];
+        for (int i = 0; i < back.Length; i++) back[i] = 100f + i;
+        var before = (float[])back.Clone();
+        Transpose.Out16Wide(ref tile[16], Lanes, ref back[0], add);
+        for (int i = 0; i < 256; i++) Assert.Equal(add ? before[i] + s[i] : s[i], back[i]);
+        for (int i = 256; i < back.Length; i++) Assert.Equal(before[i], back[i]); // nothing written past the 16 strands
+    }
+}
