@@ -93,7 +93,7 @@ public static class BenchCommand
                 rows.Add(OneSystem(groom, system, SolverPath.Reference, SequentialDispatcher.Instance, 1, Math.Max(3, frames / 4)));
                 rows.Add(OneSystem(groom, system, SolverPath.Fast, SequentialDispatcher.Instance, 1, frames));
                 if (threads > 1) rows.Add(OneSystem(groom, system, SolverPath.Fast, parallel, threads, frames));
-                if (FastPathInfo.Avx512 && system is ShapeMatchSystem.SystemName or LengthSystem.SystemName or CollideSystem.SystemName)
+                if (FastPathInfo.Avx512 && system is ShapeMatchSystem.SystemName or IntegrateSystem.SystemName or LengthSystem.SystemName or CollideSystem.SystemName)
                     rows.Add(OneSystem(groom, system, SolverPath.Fast, SequentialDispatcher.Instance, 1, frames, allowAvx512: false));
             }
         }
