@@ -104,12 +104,10 @@ internal static class Transpose
     private static void Put16(ref float r, int i, Vector512<float> v, bool add) => St16(ref r, i, add ? Avx512F.Add(Ld16(ref r, i), v) : v);
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static Vector512<float> Ld16(ref float r, int i) =>
-        Unsafe.ReadUnaligned<Vector512<float>>(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)));
+    private static Vector512<float> Ld16(ref float r, int i) => Vector512.LoadUnsafe(ref r, (nuint)i);
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void St16(ref float r, int i, Vector512<float> v) =>
-        Unsafe.WriteUnaligned(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)), v);
+    private static void St16(ref float r, int i, Vector512<float> v) => v.StoreUnsafe(ref r, (nuint)i);
 
     /// <summary>The inverse of <see cref="In16"/>; with <paramref name="add"/> the tile is added to the strands.</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
