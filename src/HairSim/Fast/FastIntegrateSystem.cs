@@ -32,12 +32,15 @@ public sealed class FastIntegrateSystem : IHairSystem
     private readonly struct Kernel : IWideParticleKernel
     {
         private readonly Vector<float> _h, _gx, _gy, _gz, _keep, _maxSpeed;
+        private readonly Vector512<float> _h16, _gx16, _gy16, _gz16, _keep16, _maxSpeed16;
         private readonly bool _limit;
 
         public Kernel(float h, Vector3 gravityStep, float keep, float maxSpeed)
         {
             _h = new(h); _gx = new(gravityStep.X); _gy = new(gravityStep.Y); _gz = new(gravityStep.Z);
             _keep = new(keep); _maxSpeed = new(maxSpeed); _limit = maxSpeed > 0f;
+            _h16 = Vector512.Create(h); _gx16 = Vector512.Create(gravityStep.X); _gy16 = Vector512.Create(gravityStep.Y); _gz16 = Vector512.Create(gravityStep.Z);
+            _keep16 = Vector512.Create(keep); _maxSpeed16 = Vector512.Create(maxSpeed);
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -70,13 +73,13 @@ public sealed class FastIntegrateSystem : IHairSystem
         public void Chunk16(ref float px, ref float py, ref float pz, ref float vx, ref float vy, ref float vz,
                             ref float invMass, ref float rx, ref float ry, ref float rz)
         {
-            var h = Vector512.Create(_h[0]); var keep = Vector512.Create(_keep[0]);
+            var h = _h16; var keep = _keep16;
             var pinned = Vector512.Equals(Vector512.LoadUnsafe(ref invMass), Vector512<float>.Zero);
             var ox = Vector512.LoadUnsafe(ref vx); var oy = Vector512.LoadUnsafe(ref vy); var oz = Vector512.LoadUnsafe(ref vz);
-            var x = (ox + Vector512.Create(_gx[0])) * keep; var y = (oy + Vector512.Create(_gy[0])) * keep; var z = (oz + Vector512.Create(_gz[0])) * keep;
+            var x = (ox + _gx16) * keep; var y = (oy + _gy16) * keep; var z = (oz + _gz16) * keep;
             if (_limit)
             {
-                var max = Vector512.Create(_maxSpeed[0]);
+                var max = _maxSpeed16;
                 var sp = Vector512.Sqrt(x * x + y * y + z * z);
                 var over = Vector512.GreaterThan(sp, max);
                 if (over != Vector512<float>.Zero)
