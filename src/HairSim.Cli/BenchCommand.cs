@@ -82,6 +82,9 @@ public static class BenchCommand
             {
                 rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames, allowAvx512: false));
                 if (threads > 1) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames, allowAvx512: false));
+                // And with strand chunks off: every system over the world in turn, each substep (the path before chunks).
+                rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames, chunks: false));
+                if (threads > 1) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames, chunks: false));
             }
         }
 
@@ -114,10 +117,11 @@ public static class BenchCommand
     }
 
     private static Row Frame(string name, GroomSettings groom, SolverPath path, IThreadDispatcher dispatcher, int threads, int warmup, int frames,
-        bool allowAvx512 = true, int rounds = 1)
+        bool allowAvx512 = true, int rounds = 1, bool chunks = true)
     {
         var scene = Scene(groom, path);
         var sim = new HairSimulation(scene, PipelineBuilder.CreateDefault(allowAvx512), dispatcher);
+        sim.Pipeline.UseStrandChunks = chunks;
         float dt = 1f / 60f;
         int f = 0;
         // At least `warmup` frames and, for the fast path, 1.5 s: the JIT recompiles hot methods with full optimisation
@@ -146,6 +150,7 @@ public static class BenchCommand
         if (scene.World.CountNonFinite() != 0) throw new InvalidDataException($"{name} ({path}) produced non-finite values.");
         var row = Summarise(name, "frame", path, threads, scene, times, bytes, times.Length) with { RoundMedians = rounds > 1 ? roundMedians : [] };
         if (!allowAvx512) row = row with { Path = "fast, 8-lane" };
+        if (!chunks) row = row with { Path = "fast, no chunks" };
         Console.Error.WriteLine($"{name,-22} {Label(row),-18} {row.MedianMs,9:F3} ms/frame");
         return row;
     }
@@ -162,6 +167,7 @@ public static class BenchCommand
         var only = new PipelineBuilder();
         foreach (var fac in PipelineBuilder.CreateDefault(allowAvx512).Factories) if (fac.Name == system) only.Add(fac);
         var pipeline = only.Build(scene, dispatcher);
+        pipeline.UseStrandChunks = false; // the system's own pass over the world (chunks are timed in whole frames)
         var head = HairSim.Measurement.HeadMotion.Shake(61 * dt);
         // Each frame restarts from the snapshot's motion only (not an edit: caches of pins and rest data stay valid).
         for (int i = 0; i < 3; i++) { snapshot.CopyMotionTo(scene.World); pipeline.Step(dt, head); }
@@ -223,8 +229,8 @@ public static class BenchCommand
         sb.AppendLine(string.Create(Inv, $"- Machine: {CpuModel()}, {Environment.ProcessorCount} logical cores, {RuntimeInformation.OSDescription}"));
         sb.AppendLine($"- Runtime: {RuntimeInformation.FrameworkDescription}, SIMD width {System.Numerics.Vector<float>.Count} floats (Vector<float>), hardware acceleration {System.Numerics.Vector.IsHardwareAccelerated}");
         sb.AppendLine($"- Date: {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC");
-        sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ substeps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`): before/after in one run.");
-        sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it), each frame starting from the same warm state (1 s of shaking), on the reference scene.");
+        sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ substeps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn): before/after in one run.");
+        sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world), each frame starting from the same warm state (1 s of shaking), on the reference scene.");
         sb.AppendLine("- All rows come from one run on a shared machine (other builds may run at the same time): compare rows within the table, and rerun for absolute numbers.");
         sb.AppendLine();
         sb.Append(table);
@@ -240,6 +246,12 @@ public static class BenchCommand
             var wide = rows.Find(r => r.Scene == narrow.Scene && r.Part == narrow.Part && r.Path == "fast" && r.Threads == narrow.Threads);
             if (wide != null)
                 sb.AppendLine(string.Create(Inv, $"16-lane (AVX-512) paths vs the same fast path kept to 8 lanes, {(narrow.Part == "frame" ? narrow.Scene : $"{narrow.Part} alone")}, {narrow.Threads} thread{(narrow.Threads == 1 ? "" : "s")}: {narrow.MedianMs:F2} → {wide.MedianMs:F2} ms/frame (**{narrow.MedianMs / wide.MedianMs:F2}×**)."));
+        }
+        foreach (var plain in rows.FindAll(r => r.Path == "fast, no chunks"))
+        {
+            var chunked = rows.Find(r => r.Scene == plain.Scene && r.Part == plain.Part && r.Path == "fast" && r.Threads == plain.Threads);
+            if (chunked != null)
+                sb.AppendLine(string.Create(Inv, $"Strand chunks vs the same fast path system by system, {plain.Scene}, {plain.Threads} thread{(plain.Threads == 1 ? "" : "s")}: {plain.MedianMs:F2} → {chunked.MedianMs:F2} ms/frame (**{plain.MedianMs / chunked.MedianMs:F2}×**)."));
         }
         sb.AppendLine("<!-- BENCH:END -->");
         string generated = sb.ToString();

@@ -8,6 +8,8 @@ public sealed class HairPipeline
 {
     private readonly HairScene _scene;
     private readonly IHairSystem[] _substep;
+    private readonly Fast.StrandChunkRunner? _chunks;
+    private bool _chunkFrame;
     private readonly IHairSystem[] _frameEnd;
     private readonly IHairSystem[] _all;
     private readonly IThreadDispatcher _dispatcher;
@@ -30,6 +32,7 @@ public sealed class HairPipeline
         _scene = scene;
         _all = systems.ToArray();
         _substep = systems.FindAll(s => s.Phase == SystemPhase.Substep).ToArray();
+        _chunks = Fast.StrandChunkRunner.TryCreate(_substep);
         _frameEnd = systems.FindAll(s => s.Phase == SystemPhase.FrameEnd).ToArray();
         _dispatcher = dispatcher;
         _substepJob = RunSubstepJob;
@@ -43,6 +46,19 @@ public sealed class HairPipeline
     public IReadOnlyList<string> SystemNames { get; }
     public bool Contains(string systemName) => Array.IndexOf((string[])SystemNames, systemName) >= 0;
     public HairScene Scene => _scene;
+
+    /// <summary>
+    /// Run uncut 16-particle strands in 32-strand chunks, transposed into rows once per frame, through all substeps
+    /// (fast path with AVX-512; default on). The same bits as running the systems one by one over the world, which
+    /// is what turning this off does; it exists to measure and test the two against each other.
+    /// </summary>
+    public bool UseStrandChunks { get; set; } = true;
+
+    /// <summary>Whether frames take the chunked path: <see cref="UseStrandChunks"/>, the fast path on AVX-512, and every substep system able to run on chunks.</summary>
+    public bool UsesStrandChunks => UseStrandChunks && _chunks != null;
+
+    /// <summary>Chunks stepped in the last frame, and how many of them went back to the system-by-system path midway (coinciding particles).</summary>
+    public (int Stepped, int HandedBack) LastFrameChunks => _chunkFrame ? _chunks!.Counts : default;
     /// <summary>The context of the last frame (teleport flag, substep length, …).</summary>
     public FrameContext LastFrame => _ctx;
 
@@ -85,6 +101,8 @@ public sealed class HairPipeline
 
         if (_substep.Length > 0)
         {
+            _chunkFrame = UsesStrandChunks && _chunks!.Ready(ctx);
+            if (_chunkFrame) _chunks!.ResetCounts();
             // Small blocks (~ParticlesPerJob) keep a block's data in L2 across all its substeps and systems.
             long blocks = (world.ParticleCount + ParticlesPerJob - 1) / ParticlesPerJob;
             _jobCount = (int)Math.Max(1, Math.Min(world.StrandCount, Math.Max(blocks, _dispatcher.ThreadCount == 1 ? 1 : _dispatcher.ThreadCount * 4)));
@@ -102,6 +120,16 @@ public sealed class HairPipeline
     {
         int n = _scene.World.StrandCount;
         int begin = (int)((long)n * job / _jobCount), end = (int)((long)n * (job + 1) / _jobCount);
+        if (_chunkFrame)
+        {
+            // Job bounds on whole chunks, so a small scene split across threads still fills chunks.
+            const int L = Fast.StrandChunk.Lanes;
+            long groups = (n + L - 1) / L;
+            begin = (int)Math.Min(n, L * (groups * job / _jobCount));
+            end = (int)Math.Min(n, L * (groups * (job + 1) / _jobCount));
+            _chunks!.Run(_scene, _ctx, begin, end);
+            return;
+        }
         for (int s = 0; s < _ctx.Substeps; s++)
             for (int k = 0; k < _substep.Length; k++)
                 _substep[k].Run(_scene, _ctx, s, begin, end);

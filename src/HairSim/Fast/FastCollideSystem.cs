@@ -9,7 +9,7 @@ namespace HairSim.Fast;
 /// reference's per-particle loop over colliders). Ellipsoid: radial projection as in <see cref="Collider.Resolve"/>;
 /// sphere and capsule share one kernel (a sphere is a capsule with both ends at its centre).
 /// </summary>
-public sealed class FastCollideSystem : IHairSystem
+public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
 {
     private readonly bool _wide;
 
@@ -40,6 +40,33 @@ public sealed class FastCollideSystem : IHairSystem
                 ParticleRuns.ForEachLiveWide(scene.World, begin, end, ref k, _wide);
             }
         }
+    }
+
+    bool IStrandChunkSystem.SupportsChunks => _wide;
+    ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.None;
+    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => true;
+    int IStrandChunkSystem.RefusedLane(HairWorld w, int s0) => -1;
+    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
+
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    {
+        var colliders = ctx.CollidersAt(substep);
+        float slide = ctx.Settings.ContactSlide;
+        for (int c = 0; c < colliders.Length; c++)
+        {
+            var col = colliders[c];
+            if (col.Kind == ColliderKind.Ellipsoid)
+            {
+                var k = new EllipsoidKernel(col, slide);
+                chunk.ForEachCell(ref k);
+            }
+            else
+            {
+                var k = new CapsuleKernel(col, slide);
+                chunk.ForEachCell(ref k);
+            }
+        }
+        return true;
     }
 
     /// <summary>Velocity response shared by all kinds: drop the inward normal part, keep ContactSlide of the rest.</summary>

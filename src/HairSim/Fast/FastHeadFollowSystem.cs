@@ -1,3 +1,4 @@
+using System.Runtime.InteropServices;
 using System.Runtime.CompilerServices;
 using System.Numerics;
 
@@ -7,7 +8,7 @@ namespace HairSim.Fast;
 /// Fast <see cref="HeadFollowSystem"/>: pinned particles go to head·rest with zero velocity (SIMD, masked by
 /// InvMass == 0); on a teleport frame the block's particles (every slot, live or cut) are first carried rigidly.
 /// </summary>
-public sealed class FastHeadFollowSystem : IHairSystem
+public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
 {
     /// <summary>Pins cached per strand; a strand with more goes through the SIMD kernel.</summary>
     private const int MaxCachedPins = 2;
@@ -65,6 +66,83 @@ public sealed class FastHeadFollowSystem : IHairSystem
                 vx[i] = 0f; vy[i] = 0f; vz[i] = 0f;
             }
         }
+    }
+
+    bool IStrandChunkSystem.SupportsChunks => FastPathInfo.Avx512;
+    ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.PinRest;
+    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => true;
+    int IStrandChunkSystem.RefusedLane(HairWorld w, int s0) => -1;
+
+    /// <summary>
+    /// The rest positions of the chunk's pinned particles, into the rest rows of the rows that hold pins: from the
+    /// per-strand pin cache (the world's rest arrays are not touched), else from the world.
+    /// </summary>
+    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
+    {
+        for (int rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
+        {
+            int k = BitOperations.TrailingZeroCount(rows);
+            for (int f = StrandChunk.RestX; f <= StrandChunk.RestZ; f++)
+                MemoryMarshal.CreateSpan(ref chunk.Row(f, k), StrandChunk.Lanes).Clear();
+        }
+        bool cached = _cache && _cachedAt.Length == w.StrandCount;
+        long stamp = w.EditStamp + 1L;
+        for (int l = 0; l < StrandChunk.Lanes; l++)
+        {
+            int s = s0 + l, first = chunk.Firsts[l];
+            if (cached && _cachedAt[s] != stamp) CachePins(w, s, stamp);
+            if (cached && _pinCount[s] >= 0)
+            {
+                for (int p = 0; p < _pinCount[s]; p++)
+                {
+                    int c = s * MaxCachedPins + p, k = _pinIndex[c] - first;
+                    Unsafe.Add(ref chunk.Row(StrandChunk.RestX, k), l) = _pinRest[3 * c];
+                    Unsafe.Add(ref chunk.Row(StrandChunk.RestY, k), l) = _pinRest[3 * c + 1];
+                    Unsafe.Add(ref chunk.Row(StrandChunk.RestZ, k), l) = _pinRest[3 * c + 2];
+                }
+                continue;
+            }
+            for (int rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
+            {
+                int k = BitOperations.TrailingZeroCount(rows), i = first + k;
+                if (w.InvMass[i] != 0f) continue;
+                Unsafe.Add(ref chunk.Row(StrandChunk.RestX, k), l) = w.RestX[i];
+                Unsafe.Add(ref chunk.Row(StrandChunk.RestY, k), l) = w.RestY[i];
+                Unsafe.Add(ref chunk.Row(StrandChunk.RestZ, k), l) = w.RestZ[i];
+            }
+        }
+    }
+
+    /// <summary>As <see cref="Run"/> on a chunk: the rigid carry on a teleport, then the rows that hold pins, 8 lanes at a time as <see cref="PinKernel"/>.</summary>
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    {
+        int width = Vector<float>.Count;
+        if (substep == 0 && ctx.Teleported)
+        {
+            var delta = new PoseLanes(ctx.TeleportDelta);
+            ref float px = ref chunk.Row(StrandChunk.X, 0), py = ref chunk.Row(StrandChunk.Y, 0), pz = ref chunk.Row(StrandChunk.Z, 0);
+            ref float vx = ref chunk.Row(StrandChunk.VelX, 0), vy = ref chunk.Row(StrandChunk.VelY, 0), vz = ref chunk.Row(StrandChunk.VelZ, 0);
+            for (int i = 0; i < StrandChunk.Cells; i += width)
+            {
+                delta.Point(Simd.Ld(ref px, i), Simd.Ld(ref py, i), Simd.Ld(ref pz, i), out var x, out var y, out var z);
+                Simd.St(ref px, i, x); Simd.St(ref py, i, y); Simd.St(ref pz, i, z);
+                delta.Direction(Simd.Ld(ref vx, i), Simd.Ld(ref vy, i), Simd.Ld(ref vz, i), out x, out y, out z);
+                Simd.St(ref vx, i, x); Simd.St(ref vy, i, y); Simd.St(ref vz, i, z);
+            }
+        }
+        if (chunk.PinnedRows == 0) return true;
+        var kernel = new PinKernel(new PoseLanes(ctx.HeadAt(substep)));
+        for (int rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
+        {
+            int k = BitOperations.TrailingZeroCount(rows);
+            for (int l = 0; l < StrandChunk.Lanes; l += width)
+                kernel.Chunk(ref Unsafe.Add(ref chunk.Row(StrandChunk.X, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.Y, k), l),
+                    ref Unsafe.Add(ref chunk.Row(StrandChunk.Z, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.VelX, k), l),
+                    ref Unsafe.Add(ref chunk.Row(StrandChunk.VelY, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.VelZ, k), l),
+                    ref Unsafe.Add(ref chunk.Row(StrandChunk.InvMass, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.RestX, k), l),
+                    ref Unsafe.Add(ref chunk.Row(StrandChunk.RestY, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.RestZ, k), l));
+        }
+        return true;
     }
 
     /// <summary>Finds strand s's pinned live particles (InvMass = 0) and caches up to two with their rest positions.</summary>

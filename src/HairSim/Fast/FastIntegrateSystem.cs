@@ -8,7 +8,7 @@ namespace HairSim.Fast;
 /// Fast <see cref="IntegrateSystem"/>: gravity, damping, speed limit and x += h·v on free particles, in float SIMD
 /// (16-lane chunks where the CPU has AVX-512, with the same arithmetic in the same order as the 8-lane chunks).
 /// </summary>
-public sealed class FastIntegrateSystem : IHairSystem
+public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
 {
     private readonly bool _wide;
 
@@ -27,6 +27,21 @@ public sealed class FastIntegrateSystem : IHairSystem
         float h = ctx.H;
         var kernel = new Kernel(h, st.Gravity * h, MathF.Max(0f, 1f - st.Damping * h), st.MaxSpeed);
         ParticleRuns.ForEachLiveWide(scene.World, begin, end, ref kernel, _wide);
+    }
+
+    bool IStrandChunkSystem.SupportsChunks => _wide;
+    ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.None;
+    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => true;
+    int IStrandChunkSystem.RefusedLane(HairWorld w, int s0) => -1;
+    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
+
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    {
+        var st = ctx.Settings;
+        float h = ctx.H;
+        var kernel = new Kernel(h, st.Gravity * h, MathF.Max(0f, 1f - st.Damping * h), st.MaxSpeed);
+        chunk.ForEachCell(ref kernel);
+        return true;
     }
 
     private readonly struct Kernel : IWideParticleKernel

@@ -10,8 +10,34 @@ namespace HairSim.Fast;
 /// same order, as <see cref="FollowTheLeader"/> over two 8-lane chains (the reciprocal square root is the AVX
 /// estimate of each half, so the bits are the same), with twice the strands per row latency.
 /// </summary>
-public sealed partial class FastLengthSystem
+public sealed partial class FastLengthSystem : IStrandChunkSystem
 {
+    bool IStrandChunkSystem.SupportsChunks => UsesWide;
+    ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
+    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => ctx.Settings.Length is LengthMode.None or LengthMode.FollowTheLeader;
+    int IStrandChunkSystem.RefusedLane(HairWorld w, int s0) => -1;
+    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
+
+    /// <summary>
+    /// The sweep on a chunk, whose first slots are this system's tile fields: no gather or scatter, only the velocity
+    /// kicks added to the chunk's velocities (as <see cref="Scatter"/> adds them to the world's).
+    /// </summary>
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    {
+        var st = ctx.Settings;
+        if (st.Length == LengthMode.None) return true;
+        var head = new PoseLanes(ctx.HeadAt(substep));
+        FollowTheLeader16(scene.World, chunk.Tile, chunk.Firsts, StrandChunk.Rows, ctx.H, st.LengthDamping, in head);
+        for (int f = 0; f < 3; f++)
+        {
+            ref float v = ref chunk.Row(StrandChunk.VelX + f, 0);
+            ref float kick = ref chunk.Row(StrandChunk.KickX + f, 0);
+            for (int i = 0; i < StrandChunk.Cells; i += 16)
+                (Vector512.LoadUnsafe(ref v, (nuint)i) + Vector512.LoadUnsafe(ref kick, (nuint)i)).StoreUnsafe(ref v, (nuint)i);
+        }
+        return true;
+    }
+
     private static void FollowTheLeader16(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, int rows, float h, float damping, in PoseLanes head)
     {
         const int W = 16;

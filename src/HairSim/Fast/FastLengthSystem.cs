@@ -20,7 +20,7 @@ public sealed partial class FastLengthSystem : IHairSystem
     public SystemPhase Phase => SystemPhase.Substep;
 
     // Tile fields, each maxCapacity rows × Lanes.
-    private const int TX = 0, TY = 1, TZ = 2, TVx = 3, TVy = 4, TVz = 5, TM = 6, TL = 7, TOx = 8, TOy = 9, TOz = 10, FieldCount = 11;
+    internal const int TX = 0, TY = 1, TZ = 2, TVx = 3, TVy = 4, TVz = 5, TM = 6, TL = 7, TOx = 8, TOy = 9, TOz = 10, FieldCount = 11;
 
     /// <summary>SIMD vectors per tile row (two chains whose latencies overlap).</summary>
     private const int Halves = 2;

@@ -86,7 +86,7 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
         public Params(float h, float alpha, float beta, bool literal, in RigidTransform head)
         {
             Alpha = alpha; Beta = beta;
-            float f = literal ? h * alpha : alpha / h;
+            float f = GoalFactor(h, alpha, literal);
             F = new(f); FHalf = new(f / 2f); FThird = new(f / 3f);
             Two = new(2); Three = new(3); Lane = Simd.Lane;
             int width = Vector<float>.Count;
@@ -104,6 +104,9 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
             HeadRotation = head.Rotation;
         }
     }
+
+    /// <summary>The pull of one goal: α·h (literal force) or α/h (Müller), divided by each particle's goal count.</summary>
+    private static float GoalFactor(float h, float alpha, bool literal) => literal ? h * alpha : alpha / h;
 
     // The stack scratch is fully written before it is read, or only read in lanes that are masked out.
     [SkipLocalsInit]

@@ -1,0 +1,323 @@
+using System.Runtime.Intrinsics.X86;
+using System.Runtime.CompilerServices;
+using System.Runtime.Intrinsics;
+
+namespace HairSim.Fast;
+
+/// <summary>
+/// A strand chunk: 32 uncut 16-particle strands, laid out as rows (row k = particle k of each strand, 32 lanes),
+/// the struct-of-arrays block of a DOTS archetype chunk. It lives on the stack (≈ 61 KB, about L1-sized) for one
+/// frame: positions and velocities are transposed in once and out once, and every substep of every system runs on
+/// its rows in between, so the length sweep needs no transposes of its own (it did 11 per substep) and the other
+/// systems read L1 instead of L2. Slots 0 … 7 are <see cref="FastLengthSystem"/>'s tile fields, so its sweep runs on
+/// a chunk unchanged.
+/// </summary>
+internal readonly ref struct StrandChunk
+{
+    public const int Lanes = 32, Rows = 16, Cells = Lanes * Rows;
+
+    public const int X = FastLengthSystem.TX, Y = FastLengthSystem.TY, Z = FastLengthSystem.TZ,
+        KickX = FastLengthSystem.TVx, KickY = FastLengthSystem.TVy, KickZ = FastLengthSystem.TVz,
+        InvMass = FastLengthSystem.TM, RestLength = FastLengthSystem.TL,
+        // From here on the length tile's PBD-only fields are reused (a chunk never runs PBD).
+        VelX = 8, VelY = 9, VelZ = 10, ShapePrev = 11, ShapeMid = 12, ShapeNext = 13, RestX = 14, RestY = 15, RestZ = 16,
+        /// <summary>Shape-matching goals (prev, mid, next) × xyz, rows −1 … 16 (see <see cref="GoalRow"/>).</summary>
+        Goals = 17, FieldCount = 26;
+
+    /// <summary>Rows −1 … 16: goal rows past both ends stay zero, so goal sums need no masks.</summary>
+    public const int Capacity = (Rows + 2) * Lanes;
+
+    public static int Size => StrandScratch.Size(Capacity, FieldCount);
+
+    public readonly StrandScratch Tile;
+    /// <summary>First particle of each lane's strand.</summary>
+    public readonly ReadOnlySpan<int> Firsts;
+    /// <summary>Bit k set: row k holds a pinned particle (its rest position is in the rest rows).</summary>
+    public readonly int PinnedRows;
+
+    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, int pinnedRows)
+    {
+        Tile = tile; Firsts = firsts; PinnedRows = pinnedRows;
+    }
+
+    /// <summary>Row <paramref name="row"/> of a particle field.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public ref float Row(int field, int row) => ref Unsafe.Add(ref Tile.Data[0], Tile.Offset(field) + row * Lanes);
+
+    /// <summary>Row <paramref name="row"/> (−1 … 16) of goal component <paramref name="goal"/> (0 … 8).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public ref float GoalRow(int goal, int row) => ref Unsafe.Add(ref Tile.Data[0], Tile.Offset(Goals + goal) + (row + 1) * Lanes);
+
+    /// <summary>Runs a per-particle kernel's 16-lane chunk over every cell (all lanes are live particles).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public void ForEachCell<TKernel>(ref TKernel kernel) where TKernel : struct, IWideParticleKernel
+    {
+        ref float px = ref Row(X, 0), py = ref Row(Y, 0), pz = ref Row(Z, 0);
+        ref float vx = ref Row(VelX, 0), vy = ref Row(VelY, 0), vz = ref Row(VelZ, 0), m = ref Row(InvMass, 0);
+        ref float rx = ref Row(RestX, 0), ry = ref Row(RestY, 0), rz = ref Row(RestZ, 0);
+        for (int i = 0; i < Cells; i += 16)
+            kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
+                ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
+                ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
+    }
+}
+
+/// <summary>What a chunk must hold for a system, beyond positions, velocities and inverse masses.</summary>
+[Flags]
+internal enum ChunkFields
+{
+    None = 0,
+    RestLength = 1,
+    Shape = 2,
+    /// <summary>Rest positions of the rows that hold pinned particles.</summary>
+    PinRest = 4,
+}
+
+/// <summary>A fast substep system that can also run on a <see cref="StrandChunk"/> (same arithmetic per particle, same bits).</summary>
+internal interface IStrandChunkSystem
+{
+    /// <summary>Whether this instance can run on chunks at all (the chunk kernels are 16-lane AVX-512 code).</summary>
+    bool SupportsChunks { get; }
+    ChunkFields ChunkNeeds { get; }
+    /// <summary>Whether this frame's settings take the chunk kernel (else every strand goes through <see cref="IHairSystem.Run"/>).</summary>
+    bool ChunkReady(FrameContext ctx);
+    /// <summary>The first of the 32 strands from s0 that may not go into a chunk (e.g. shape matching: a bent rest shape), or −1.</summary>
+    int RefusedLane(HairWorld w, int s0);
+    /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
+    void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk);
+    /// <summary>
+    /// Substep <paramref name="substep"/> on the chunk. False: nothing was changed, and this system cannot handle
+    /// the chunk now (e.g. coinciding particles); the runner then finishes the chunk's frame through <see cref="IHairSystem.Run"/>.
+    /// </summary>
+    bool RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk);
+}
+
+/// <summary>
+/// Runs a job's strands through all substeps chunk by chunk: each run of 32 uncut 16-particle strands that every
+/// system accepts is loaded into a <see cref="StrandChunk"/>, stepped, and stored; every other strand (cut, other
+/// lengths, bent rest shapes) goes through the systems' ordinary <see cref="IHairSystem.Run"/> over its range.
+/// Both give the same bits (StrandChunkTests).
+/// </summary>
+internal sealed class StrandChunkRunner
+{
+    private readonly IHairSystem[] _systems;
+    private readonly IStrandChunkSystem[] _chunkSystems;
+    private readonly ChunkFields _needs;
+
+    private StrandChunkRunner(IHairSystem[] systems, IStrandChunkSystem[] chunkSystems)
+    {
+        _systems = systems;
+        _chunkSystems = chunkSystems;
+        foreach (var c in chunkSystems) _needs |= c.ChunkNeeds;
+    }
+
+    /// <summary>A runner for these substep systems, or null if one of them cannot run on chunks.</summary>
+    public static StrandChunkRunner? TryCreate(IHairSystem[] substepSystems)
+    {
+        if (substepSystems.Length == 0 || !FastPathInfo.Avx512) return null;
+        var chunk = new IStrandChunkSystem[substepSystems.Length];
+        for (int k = 0; k < substepSystems.Length; k++)
+        {
+            if (substepSystems[k] is not IStrandChunkSystem c || !c.SupportsChunks) return null;
+            chunk[k] = c;
+        }
+        return new StrandChunkRunner(substepSystems, chunk);
+    }
+
+    private int _stepped, _handedBack;
+
+    public void ResetCounts() { _stepped = 0; _handedBack = 0; }
+
+    /// <summary>Chunks stepped since <see cref="ResetCounts"/>, and how many of them went back to the ordinary path midway.</summary>
+    public (int Stepped, int HandedBack) Counts => (Volatile.Read(ref _stepped), Volatile.Read(ref _handedBack));
+
+    /// <summary>Whether this frame's settings let every system run on chunks.</summary>
+    public bool Ready(FrameContext ctx)
+    {
+        foreach (var c in _chunkSystems) if (!c.ChunkReady(ctx)) return false;
+        return true;
+    }
+
+    /// <summary>All substeps of strands [begin, end).</summary>
+    // The stack tile is written before it is read (rows that must start as zero are cleared here).
+    [SkipLocalsInit]
+    public void Run(HairScene scene, FrameContext ctx, int begin, int end)
+    {
+        var w = scene.World;
+        var tile = new StrandScratch(stackalloc float[StrandChunk.Size], StrandChunk.Capacity);
+        Span<int> firsts = stackalloc int[StrandChunk.Lanes];
+        bool cleared = false;
+        int ordinaryFrom = begin, stepped = 0, handedBack = 0;
+        for (int s0 = begin; s0 + StrandChunk.Lanes <= end;)
+        {
+            int next = Refused(w, s0);
+            if (next > s0)
+            {
+                s0 = next;
+                continue;
+            }
+            if (ordinaryFrom < s0) RunOrdinary(scene, ctx, ordinaryFrom, s0, 0, 0);
+            if (!cleared) { ClearFixedRows(tile); cleared = true; }
+            for (int l = 0; l < StrandChunk.Lanes; l++) firsts[l] = w.StrandFirst[s0 + l];
+            stepped++;
+            if (!RunChunk(scene, ctx, s0, tile, firsts)) handedBack++;
+            s0 += StrandChunk.Lanes;
+            ordinaryFrom = s0;
+        }
+        if (ordinaryFrom < end) RunOrdinary(scene, ctx, ordinaryFrom, end, 0, 0);
+        if (stepped > 0) Interlocked.Add(ref _stepped, stepped);
+        if (handedBack > 0) Interlocked.Add(ref _handedBack, handedBack);
+    }
+
+    /// <summary>
+    /// s0 when the 32 strands from s0 make a chunk (whole, 16 particles, back to back, accepted by every system);
+    /// else the first strand a chunk could start at (every chunk starting before it holds the strand that failed).
+    /// </summary>
+    private int Refused(HairWorld w, int s0)
+    {
+        int first = w.StrandFirst[s0];
+        for (int l = 0; l < StrandChunk.Lanes; l++)
+        {
+            int s = s0 + l;
+            if (w.StrandParticleCount[s] != StrandChunk.Rows || w.StrandCapacity[s] != StrandChunk.Rows) return s + 1;
+            if (w.StrandFirst[s] != first + l * StrandChunk.Rows) return s; // not contiguous with s − 1
+        }
+        foreach (var c in _chunkSystems)
+        {
+            int l = c.RefusedLane(w, s0);
+            if (l >= 0) return s0 + l + 1;
+        }
+        return s0;
+    }
+
+    /// <summary>One chunk through all substeps; false if a system handed it back to the ordinary path midway.</summary>
+    private bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, ReadOnlySpan<int> firsts)
+    {
+        var w = scene.World;
+        int first = firsts[0];
+        Load(w.PosX, first, tile, StrandChunk.X); Load(w.PosY, first, tile, StrandChunk.Y); Load(w.PosZ, first, tile, StrandChunk.Z);
+        Load(w.VelX, first, tile, StrandChunk.VelX); Load(w.VelY, first, tile, StrandChunk.VelY); Load(w.VelZ, first, tile, StrandChunk.VelZ);
+        Load(w.InvMass, first, tile, StrandChunk.InvMass);
+        if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, tile, StrandChunk.RestLength);
+        if ((_needs & ChunkFields.Shape) != 0)
+        {
+            Load(w.ShapePrev, first, tile, StrandChunk.ShapePrev); Load(w.ShapeMid, first, tile, StrandChunk.ShapeMid);
+            Load(w.ShapeNext, first, tile, StrandChunk.ShapeNext);
+        }
+        int pinned = (_needs & ChunkFields.PinRest) != 0 ? PinnedRows(tile) : 0;
+        var chunk = new StrandChunk(tile, firsts, pinned);
+        foreach (var c in _chunkSystems) c.PrepareChunk(w, s0, chunk);
+        // The next chunk's data is fetched from memory while this one computes, a slice after each system.
+        var prefetch = new Prefetcher(w, first + StrandChunk.Cells, _needs);
+        int slice = (prefetch.Lines + ctx.Substeps * _chunkSystems.Length - 1) / (ctx.Substeps * _chunkSystems.Length);
+        for (int s = 0; s < ctx.Substeps; s++)
+            for (int k = 0; k < _chunkSystems.Length; k++)
+            {
+                if (_chunkSystems[k].RunChunk(scene, ctx, s, chunk)) { prefetch.Next(slice); continue; }
+                Store(tile, first, w);
+                RunOrdinary(scene, ctx, s0, s0 + StrandChunk.Lanes, s, k);
+                return false;
+            }
+        Store(tile, first, w);
+        return true;
+    }
+
+    /// <summary>Substeps from <paramref name="fromSubstep"/> (its systems from <paramref name="fromSystem"/>) of strands [begin, end), system by system.</summary>
+    private void RunOrdinary(HairScene scene, FrameContext ctx, int begin, int end, int fromSubstep, int fromSystem)
+    {
+        for (int s = fromSubstep; s < ctx.Substeps; s++)
+            for (int k = s == fromSubstep ? fromSystem : 0; k < _systems.Length; k++)
+                _systems[k].Run(scene, ctx, s, begin, end);
+    }
+
+    private static void ClearFixedRows(scoped StrandScratch tile)
+    {
+        // Goal rows −1, 0, 15 and 16: no triple fills them (triples are 1 … 14).
+        for (int g = 0; g < 9; g++)
+        {
+            var goal = tile.Data.Slice(tile.Offset(StrandChunk.Goals + g), StrandChunk.Capacity);
+            goal.Slice(0, 2 * StrandChunk.Lanes).Clear();
+            goal.Slice(StrandChunk.Rows * StrandChunk.Lanes, 2 * StrandChunk.Lanes).Clear();
+        }
+        // The root row's velocity kick: the length sweep never writes it.
+        for (int f = StrandChunk.KickX; f <= StrandChunk.KickZ; f++) tile.Data.Slice(tile.Offset(f), StrandChunk.Lanes).Clear();
+    }
+
+    /// <summary>Transposes 32 strands of a world field into the chunk's rows (two 16 × 16 blocks).</summary>
+    private static void Load(float[] src, int first, scoped StrandScratch tile, int field)
+    {
+        ref float row0 = ref tile.Data[tile.Offset(field)];
+        Transpose.In16Wide(ref Simd.At(src, first), ref row0, StrandChunk.Lanes);
+        Transpose.In16Wide(ref Simd.At(src, first + 16 * StrandChunk.Rows), ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes);
+    }
+
+    private static void Store(scoped StrandScratch tile, int first, HairWorld w)
+    {
+        Store(tile, StrandChunk.X, w.PosX, first); Store(tile, StrandChunk.Y, w.PosY, first); Store(tile, StrandChunk.Z, w.PosZ, first);
+        Store(tile, StrandChunk.VelX, w.VelX, first); Store(tile, StrandChunk.VelY, w.VelY, first); Store(tile, StrandChunk.VelZ, w.VelZ, first);
+    }
+
+    private static void Store(scoped StrandScratch tile, int field, float[] dst, int first)
+    {
+        ref float row0 = ref tile.Data[tile.Offset(field)];
+        Transpose.Out16Wide(ref row0, StrandChunk.Lanes, ref Simd.At(dst, first), add: false);
+        Transpose.Out16Wide(ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes, ref Simd.At(dst, first + 16 * StrandChunk.Rows), add: false);
+    }
+
+    /// <summary>The rows holding pinned particles (inverse mass 0), as bits.</summary>
+    private static int PinnedRows(scoped StrandScratch tile)
+    {
+        int rows = 0;
+        ref float m = ref tile.Data[tile.Offset(StrandChunk.InvMass)];
+        for (int k = 0; k < StrandChunk.Rows; k++)
+        {
+            ref float row = ref Unsafe.Add(ref m, k * StrandChunk.Lanes);
+            var zero = Vector512.Equals(Vector512.LoadUnsafe(ref row), Vector512<float>.Zero)
+                       | Vector512.Equals(Vector512.LoadUnsafe(ref row, 16), Vector512<float>.Zero);
+            if (zero != Vector512<float>.Zero) rows |= 1 << k;
+        }
+        return rows;
+    }
+}
+
+/// <summary>
+/// Software prefetch of the next chunk's fields into L2, spread over the current chunk's work. The hardware
+/// prefetcher alone leaves the chunk loads waiting on memory: each field is a separate 2 KB stream touched once per
+/// chunk, with microseconds of compute in between, so it never runs far enough ahead. Addresses are taken once per
+/// chunk; a prefetch is only a hint, so one into an array the GC has since moved costs nothing but the miss.
+/// </summary>
+internal unsafe struct Prefetcher
+{
+    private const int LinesPerField = StrandChunk.Cells * sizeof(float) / 64, MaxFields = 11;
+    private fixed long _field[MaxFields];
+    private int _cursor;
+
+    public Prefetcher(HairWorld w, int first, ChunkFields needs)
+    {
+        _cursor = 0;
+        int n = 0;
+        // Nothing past the world's end.
+        if (first + StrandChunk.Cells <= w.ParticleCount && Sse.IsSupported)
+        {
+            Add(w.PosX, first, ref n); Add(w.PosY, first, ref n); Add(w.PosZ, first, ref n);
+            Add(w.VelX, first, ref n); Add(w.VelY, first, ref n); Add(w.VelZ, first, ref n); Add(w.InvMass, first, ref n);
+            if ((needs & ChunkFields.RestLength) != 0) Add(w.RestLength, first, ref n);
+            if ((needs & ChunkFields.Shape) != 0) { Add(w.ShapePrev, first, ref n); Add(w.ShapeMid, first, ref n); Add(w.ShapeNext, first, ref n); }
+        }
+        Lines = n * LinesPerField;
+    }
+
+    private void Add(float[] a, int first, ref int n) => _field[n++] = (long)Unsafe.AsPointer(ref Simd.At(a, first));
+
+    public int Lines { get; }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public void Next(int count)
+    {
+        for (int stop = Math.Min(Lines, _cursor + count); _cursor < stop; _cursor++)
+        {
+            int f = _cursor / LinesPerField;
+            Sse.Prefetch1((byte*)_field[f] + (_cursor - f * LinesPerField) * 64);
+        }
+    }
+}

@@ -1,0 +1,130 @@
+using System.Numerics;
+using HairSim;
+using HairSim.Fast;
+using Xunit.Abstractions;
+
+namespace HairSim.Tests.Fast;
+
+/// <summary>
+/// With AVX-512 the fast pipeline steps uncut 16-particle strands in 32-strand chunks (<see cref="StrandChunk"/>),
+/// transposed into rows once per frame. Each chunk kernel does the arithmetic of its system's 16-lane path in the
+/// same order, so a run with chunks must give exactly the bits of the same run system by system, in every scene:
+/// those that chunks take whole, those they take in part (cuts, bends, short strands), and those they leave alone
+/// (PBD, global stiffness).
+/// </summary>
+public class StrandChunkTests(ITestOutputHelper output)
+{
+    private static bool ChunksExpected => FastPathInfo.Avx512;
+
+    [Theory]
+    [MemberData(nameof(FastVsReferenceTests.Scenes), MemberType = typeof(FastVsReferenceTests))]
+    public void ChunksGiveTheBitsOfTheSystemBySystemPath(string scene)
+    {
+        foreach (int threads in new[] { 1, 2 })
+        {
+            var chunked = FastPathScenes.Build(scene, SolverPath.Fast);
+            var plain = FastPathScenes.Build(scene, SolverPath.Fast);
+            using var dispatcher = new ParallelDispatcher(threads);
+            var simC = new HairSimulation(chunked, dispatcher: dispatcher);
+            var simP = new HairSimulation(plain, dispatcher: dispatcher);
+            simP.Pipeline.UseStrandChunks = false;
+            Assert.Equal(ChunksExpected, simC.Pipeline.UsesStrandChunks);
+            Assert.False(simP.Pipeline.UsesStrandChunks);
+            int stepped = 0;
+            for (int f = 1; f <= 12; f++)
+            {
+                simC.Step(1f / 60f, FastPathScenes.HeadAt(f));
+                simP.Step(1f / 60f, FastPathScenes.HeadAt(f));
+                stepped += simC.Pipeline.LastFrameChunks.Stepped;
+                Assert.True(chunked.World.BitEquals(plain.World), $"{scene}, {threads} thread(s): the paths differ after frame {f}");
+            }
+            Assert.Equal(0, simP.Pipeline.LastFrameChunks.Stepped);
+            Assert.False(FastPathScenes.Build(scene, SolverPath.Fast).World.BitEquals(chunked.World));
+            // Scenes whose settings every chunk kernel handles, with whole 16-particle strands: chunks must be used.
+            bool chunkable = scene is "straight" or "sphere" or "capsule" or "rotated-ellipsoid" or "all-colliders" or "literal"
+                or "length-none" or "speed-limit" or "one-pin" or "no-colliders";
+            if (ChunksExpected && chunkable) Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
+            // No run of 32 whole 16-particle strands (cut, cut-mixed, short8), or settings the chunk kernels leave to the plain path.
+            if (scene is "pbd" or "global-shape" or "short8" or "cut" or "cut-mixed") Assert.Equal(0, stepped);
+            output.WriteLine($"{scene}, {threads} thread(s): {stepped} chunks over 12 frames");
+        }
+    }
+
+    [Fact]
+    public void ChunkWithCoincidingParticlesGoesBackToThePerStrandPathWithTheSameBits()
+    {
+        var chunked = FastPathScenes.Build("straight", SolverPath.Fast);
+        var plain = FastPathScenes.Build("straight", SolverPath.Fast);
+        foreach (var w in new[] { chunked.World, plain.World })
+        {
+            // Strand 40 (second chunk): particles 5 and 7 coincide, so triple 6 has no axis (the reference's fallback).
+            int f = w.StrandFirst[40];
+            w.SetPosition(f + 7, w.GetPosition(f + 5));
+        }
+        var simC = new HairSimulation(chunked);
+        var simP = new HairSimulation(plain);
+        simP.Pipeline.UseStrandChunks = false;
+        simC.Step(1f / 60f, FastPathScenes.HeadAt(1));
+        simP.Step(1f / 60f, FastPathScenes.HeadAt(1));
+        Assert.True(chunked.World.BitEquals(plain.World));
+        Assert.Equal(0, chunked.World.CountNonFinite());
+        if (!ChunksExpected) return;
+        var (stepped, handedBack) = simC.Pipeline.LastFrameChunks;
+        Assert.Equal(4, stepped); // 144 strands: chunks at 0, 32, 64, 96
+        Assert.Equal(1, handedBack);
+        for (int f = 2; f <= 6; f++)
+        {
+            simC.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simP.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            Assert.True(chunked.World.BitEquals(plain.World), $"the paths differ after frame {f}");
+        }
+    }
+
+    [Fact]
+    public void CutStrandInsideARunLeavesItsNeighboursInChunks()
+    {
+        var scene = FastPathScenes.Build("straight", SolverPath.Fast);
+        var plain = FastPathScenes.Build("straight", SolverPath.Fast);
+        foreach (var w in new[] { scene.World, plain.World })
+        {
+            w.StrandParticleCount[10] = 9;
+            w.MarkEdited();
+        }
+        var sim = new HairSimulation(scene);
+        var simP = new HairSimulation(plain);
+        simP.Pipeline.UseStrandChunks = false;
+        sim.Step(1f / 60f, FastPathScenes.HeadAt(1));
+        simP.Step(1f / 60f, FastPathScenes.HeadAt(1));
+        Assert.True(scene.World.BitEquals(plain.World));
+        // 144 strands, strand 10 cut: chunks start at 11, 43, 75, 107 (strands 0 … 10 and 139 … 143 go system by system).
+        if (ChunksExpected) Assert.Equal(4, sim.Pipeline.LastFrameChunks.Stepped);
+    }
+
+    [Fact]
+    public void ChunksNeedEverySubstepSystemToRunOnThem()
+    {
+        var scene = FastPathScenes.Build("straight", SolverPath.Fast);
+        var builder = PipelineBuilder.CreateDefault();
+        // A system from outside the core (a wind, say) that only knows the world: the pipeline must not chunk.
+        builder.Add(new SystemFactory("wind", SystemPhase.Substep, 250, _ => true, _ => new Wind()));
+        var sim = new HairSimulation(scene, builder);
+        Assert.False(sim.Pipeline.UsesStrandChunks);
+        sim.Step(1f / 60f, FastPathScenes.HeadAt(1));
+        Assert.Equal(0, sim.Pipeline.LastFrameChunks.Stepped);
+        Assert.False(new HairSimulation(FastPathScenes.Build("straight", SolverPath.Fast), PipelineBuilder.CreateDefault(allowAvx512: false)).Pipeline.UsesStrandChunks);
+        Assert.False(new HairSimulation(FastPathScenes.Build("straight", SolverPath.Reference)).Pipeline.UsesStrandChunks);
+    }
+
+    private sealed class Wind : IHairSystem
+    {
+        public string Name => "wind";
+        public SystemPhase Phase => SystemPhase.Substep;
+        public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
+        {
+            var w = scene.World;
+            for (int s = begin; s < end; s++)
+                for (int i = w.StrandFirst[s]; i < w.StrandFirst[s] + w.StrandParticleCount[s]; i++)
+                    if (w.InvMass[i] > 0f) w.VelX[i] += 0.01f;
+        }
+    }
+}
