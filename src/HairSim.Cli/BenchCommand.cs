@@ -53,6 +53,7 @@ public static class BenchCommand
         var command = "dotnet run -c Release --project src/HairSim.Cli -- bench" + (Environment.GetCommandLineArgs().Length > 2
             ? " " + string.Join(' ', Environment.GetCommandLineArgs().Skip(2)) : "");
         var rows = new List<Row>();
+        var chunkPairs = new List<(Row On, Row Off)>();
         var total = Stopwatch.StartNew();
         using var parallel = new ParallelDispatcher(threads);
 
@@ -82,9 +83,12 @@ public static class BenchCommand
             {
                 rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames, allowAvx512: false));
                 if (threads > 1) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames, allowAvx512: false));
-                // And with strand chunks off: every system over the world in turn, each substep (the path before chunks).
-                rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames, chunks: false));
-                if (threads > 1) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames, chunks: false));
+                // And with strand chunks off (every system over the world in turn, each substep: the path before chunks),
+                // interleaved with chunks on in one simulation, so drift on a shared machine hits both alike.
+                chunkPairs.Add(ChunksOnOff(name, groom, SequentialDispatcher.Instance, 1, warmup, frames));
+                if (threads > 1) chunkPairs.Add(ChunksOnOff(name, groom, parallel, threads, warmup, frames));
+                rows.Add(chunkPairs[threads > 1 ? ^2 : ^1].Off);
+                if (threads > 1) rows.Add(chunkPairs[^1].Off);
             }
         }
 
@@ -106,7 +110,7 @@ public static class BenchCommand
         Console.WriteLine();
         Console.WriteLine(table);
         Console.WriteLine($"bench took {total.Elapsed.TotalSeconds:F0} s");
-        if (outPath != null) WriteDoc(outPath, table, command, rows, threads, frames, warmup, rounds);
+        if (outPath != null) WriteDoc(outPath, table, command, rows, chunkPairs, threads, frames, warmup, rounds);
         return 0;
     }
 
@@ -117,11 +121,10 @@ public static class BenchCommand
     }
 
     private static Row Frame(string name, GroomSettings groom, SolverPath path, IThreadDispatcher dispatcher, int threads, int warmup, int frames,
-        bool allowAvx512 = true, int rounds = 1, bool chunks = true)
+        bool allowAvx512 = true, int rounds = 1)
     {
         var scene = Scene(groom, path);
         var sim = new HairSimulation(scene, PipelineBuilder.CreateDefault(allowAvx512), dispatcher);
-        sim.Pipeline.UseStrandChunks = chunks;
         float dt = 1f / 60f;
         int f = 0;
         // At least `warmup` frames and, for the fast path, 1.5 s: the JIT recompiles hot methods with full optimisation
@@ -150,9 +153,46 @@ public static class BenchCommand
         if (scene.World.CountNonFinite() != 0) throw new InvalidDataException($"{name} ({path}) produced non-finite values.");
         var row = Summarise(name, "frame", path, threads, scene, times, bytes, times.Length) with { RoundMedians = rounds > 1 ? roundMedians : [] };
         if (!allowAvx512) row = row with { Path = "fast, 8-lane" };
-        if (!chunks) row = row with { Path = "fast, no chunks" };
         Console.Error.WriteLine($"{name,-22} {Label(row),-18} {row.MedianMs,9:F3} ms/frame");
         return row;
+    }
+
+    /// <summary>Chunks on and off in one simulation, alternating blocks of 10 frames: (on, off) rows.</summary>
+    private static (Row On, Row Off) ChunksOnOff(string name, GroomSettings groom, IThreadDispatcher dispatcher, int threads, int warmup, int frames)
+    {
+        var scene = Scene(groom, SolverPath.Fast);
+        var sim = new HairSimulation(scene, dispatcher: dispatcher);
+        float dt = 1f / 60f;
+        int f = 0;
+        var warm = Stopwatch.StartNew();
+        for (; f < warmup || warm.Elapsed.TotalSeconds < 1.5; f++)
+        {
+            sim.Pipeline.UseStrandChunks = f % 2 == 0; // both paths reach the JIT's optimised tier
+            sim.Step(dt, HairSim.Measurement.HeadMotion.Shake((f + 1) * dt));
+        }
+        const int Block = 10;
+        int blocks = Math.Max(1, (frames + Block - 1) / Block);
+        var on = new double[blocks * Block];
+        var off = new double[blocks * Block];
+        var sw = new Stopwatch();
+        for (int b = 0; b < blocks; b++)
+            for (int pass = 0; pass < 2; pass++)
+            {
+                sim.Pipeline.UseStrandChunks = pass == 0;
+                var times = pass == 0 ? on : off;
+                for (int i = 0; i < Block; i++, f++)
+                {
+                    var head = HairSim.Measurement.HeadMotion.Shake((f + 1) * dt);
+                    sw.Restart();
+                    sim.Step(dt, head);
+                    times[b * Block + i] = sw.Elapsed.TotalMilliseconds;
+                }
+            }
+        if (scene.World.CountNonFinite() != 0) throw new InvalidDataException($"{name} produced non-finite values.");
+        var rowOn = Summarise(name, "frame", SolverPath.Fast, threads, scene, on, 0, on.Length);
+        var rowOff = Summarise(name, "frame", SolverPath.Fast, threads, scene, off, 0, off.Length) with { Path = "fast, no chunks" };
+        Console.Error.WriteLine($"{name,-22} {Label(rowOff),-18} {rowOff.MedianMs,9:F3} ms/frame (chunks on, interleaved: {rowOn.MedianMs:F3})");
+        return (rowOn, rowOff);
     }
 
     private static Row OneSystem(GroomSettings groom, string system, SolverPath path, IThreadDispatcher dispatcher, int threads, int frames,
@@ -215,7 +255,7 @@ public static class BenchCommand
         return sb.ToString();
     }
 
-    private static void WriteDoc(string path, string table, string command, List<Row> rows, int threads, int frames, int warmup, int rounds)
+    private static void WriteDoc(string path, string table, string command, List<Row> rows, List<(Row On, Row Off)> chunkPairs, int threads, int frames, int warmup, int rounds)
     {
         var sb = new StringBuilder();
         sb.AppendLine("# Performance");
@@ -229,7 +269,7 @@ public static class BenchCommand
         sb.AppendLine(string.Create(Inv, $"- Machine: {CpuModel()}, {Environment.ProcessorCount} logical cores, {RuntimeInformation.OSDescription}"));
         sb.AppendLine($"- Runtime: {RuntimeInformation.FrameworkDescription}, SIMD width {System.Numerics.Vector<float>.Count} floats (Vector<float>), hardware acceleration {System.Numerics.Vector.IsHardwareAccelerated}");
         sb.AppendLine($"- Date: {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC");
-        sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ substeps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn): before/after in one run.");
+        sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ substeps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn), timed in the same simulation as chunks on, alternating blocks of 10 frames: before/after in one run.");
         sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world), each frame starting from the same warm state (1 s of shaking), on the reference scene.");
         sb.AppendLine("- All rows come from one run on a shared machine (other builds may run at the same time): compare rows within the table, and rerun for absolute numbers.");
         sb.AppendLine();
@@ -247,12 +287,8 @@ public static class BenchCommand
             if (wide != null)
                 sb.AppendLine(string.Create(Inv, $"16-lane (AVX-512) paths vs the same fast path kept to 8 lanes, {(narrow.Part == "frame" ? narrow.Scene : $"{narrow.Part} alone")}, {narrow.Threads} thread{(narrow.Threads == 1 ? "" : "s")}: {narrow.MedianMs:F2} → {wide.MedianMs:F2} ms/frame (**{narrow.MedianMs / wide.MedianMs:F2}×**)."));
         }
-        foreach (var plain in rows.FindAll(r => r.Path == "fast, no chunks"))
-        {
-            var chunked = rows.Find(r => r.Scene == plain.Scene && r.Part == plain.Part && r.Path == "fast" && r.Threads == plain.Threads);
-            if (chunked != null)
-                sb.AppendLine(string.Create(Inv, $"Strand chunks vs the same fast path system by system, {plain.Scene}, {plain.Threads} thread{(plain.Threads == 1 ? "" : "s")}: {plain.MedianMs:F2} → {chunked.MedianMs:F2} ms/frame (**{plain.MedianMs / chunked.MedianMs:F2}×**)."));
-        }
+        foreach (var (on, off) in chunkPairs)
+            sb.AppendLine(string.Create(Inv, $"Strand chunks vs the same fast path system by system, {off.Scene}, {off.Threads} thread{(off.Threads == 1 ? "" : "s")}, interleaved in one simulation (blocks of 10 frames, {off.Frames} each): {off.MedianMs:F2} → {on.MedianMs:F2} ms/frame (**{off.MedianMs / on.MedianMs:F2}×**)."));
         sb.AppendLine("<!-- BENCH:END -->");
         string generated = sb.ToString();
 
