@@ -22,34 +22,20 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
     public string Name => CollideSystem.SystemName;
     public SystemPhase Phase => SystemPhase.Substep;
 
-    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
-    {
-        var colliders = ctx.CollidersAt(substep);
-        float slide = ctx.Settings.ContactSlide;
-        for (int c = 0; c < colliders.Length; c++)
-        {
-            var col = colliders[c];
-            if (col.Kind == ColliderKind.Ellipsoid)
-            {
-                var k = new EllipsoidKernel(col, slide);
-                ParticleRuns.ForEachLiveWide(scene.World, begin, end, ref k, _wide);
-            }
-            else
-            {
-                var k = new CapsuleKernel(col, slide);
-                ParticleRuns.ForEachLiveWide(scene.World, begin, end, ref k, _wide);
-            }
-        }
-    }
+    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end) =>
+        Resolve(ctx, substep, scene.World, begin, end, default, onChunk: false);
 
     bool IStrandChunkSystem.SupportsChunks => _wide;
-    ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.None;
-    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => true;
-    int IStrandChunkSystem.RefusedLane(HairWorld w, int s0) => -1;
-    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
 
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
+        Resolve(ctx, substep, scene.World, 0, 0, chunk, onChunk: true);
+        return true;
+    }
+
+    /// <summary>Every collider of the substep, over strands [begin, end) of the world or over a chunk's rows.</summary>
+    private void Resolve(FrameContext ctx, int substep, HairWorld w, int begin, int end, scoped StrandChunk chunk, bool onChunk)
+    {
         var colliders = ctx.CollidersAt(substep);
         float slide = ctx.Settings.ContactSlide;
         for (int c = 0; c < colliders.Length; c++)
@@ -58,15 +44,16 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
             if (col.Kind == ColliderKind.Ellipsoid)
             {
                 var k = new EllipsoidKernel(col, slide);
-                chunk.ForEachCell(ref k);
+                if (onChunk) chunk.ForEachCell(ref k);
+                else ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
             }
             else
             {
                 var k = new CapsuleKernel(col, slide);
-                chunk.ForEachCell(ref k);
+                if (onChunk) chunk.ForEachCell(ref k);
+                else ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
             }
         }
-        return true;
     }
 
     /// <summary>Velocity response shared by all kinds: drop the inward normal part, keep ContactSlide of the rest.</summary>

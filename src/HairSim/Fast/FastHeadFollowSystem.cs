@@ -70,8 +70,6 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
 
     bool IStrandChunkSystem.SupportsChunks => FastPathInfo.Avx512;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.PinRest;
-    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => true;
-    int IStrandChunkSystem.RefusedLane(HairWorld w, int s0) => -1;
 
     /// <summary>
     /// The rest positions of the chunk's pinned particles, into the rest rows of the rows that hold pins: from the

@@ -30,10 +30,6 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
     }
 
     bool IStrandChunkSystem.SupportsChunks => _wide;
-    ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.None;
-    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => true;
-    int IStrandChunkSystem.RefusedLane(HairWorld w, int s0) => -1;
-    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
 
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {

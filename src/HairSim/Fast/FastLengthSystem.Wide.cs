@@ -15,8 +15,6 @@ public sealed partial class FastLengthSystem : IStrandChunkSystem
     bool IStrandChunkSystem.SupportsChunks => UsesWide;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
     bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => ctx.Settings.Length is LengthMode.None or LengthMode.FollowTheLeader;
-    int IStrandChunkSystem.RefusedLane(HairWorld w, int s0) => -1;
-    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
 
     /// <summary>
     /// The sweep on a chunk, whose first slots are this system's tile fields: no gather or scatter, only the velocity

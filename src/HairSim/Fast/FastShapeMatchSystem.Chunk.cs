@@ -25,7 +25,6 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
         return -1;
     }
 
-    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
 
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {

@@ -78,13 +78,13 @@ internal interface IStrandChunkSystem
 {
     /// <summary>Whether this instance can run on chunks at all (the chunk kernels are 16-lane AVX-512 code).</summary>
     bool SupportsChunks { get; }
-    ChunkFields ChunkNeeds { get; }
+    ChunkFields ChunkNeeds => ChunkFields.None;
     /// <summary>Whether this frame's settings take the chunk kernel (else every strand goes through <see cref="IHairSystem.Run"/>).</summary>
-    bool ChunkReady(FrameContext ctx);
+    bool ChunkReady(FrameContext ctx) => true;
     /// <summary>The first of the 32 strands from s0 that may not go into a chunk (e.g. shape matching: a bent rest shape), or −1.</summary>
-    int RefusedLane(HairWorld w, int s0);
+    int RefusedLane(HairWorld w, int s0) => -1;
     /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
-    void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk);
+    void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
     /// <summary>
     /// Substep <paramref name="substep"/> on the chunk. False: nothing was changed, and this system cannot handle
     /// the chunk now (e.g. coinciding particles); the runner then finishes the chunk's frame through <see cref="IHairSystem.Run"/>.

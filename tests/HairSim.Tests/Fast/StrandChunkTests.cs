@@ -61,23 +61,14 @@ public class StrandChunkTests(ITestOutputHelper output)
             int f = w.StrandFirst[40];
             w.SetPosition(f + 7, w.GetPosition(f + 5));
         }
-        var simC = new HairSimulation(chunked);
-        var simP = new HairSimulation(plain);
-        simP.Pipeline.UseStrandChunks = false;
-        simC.Step(1f / 60f, FastPathScenes.HeadAt(1));
-        simP.Step(1f / 60f, FastPathScenes.HeadAt(1));
-        Assert.True(chunked.World.BitEquals(plain.World));
+        var (simC, simP) = Pair(chunked, plain);
+        StepBoth(simC, simP, 1);
         Assert.Equal(0, chunked.World.CountNonFinite());
         if (!ChunksExpected) return;
         var (stepped, handedBack) = simC.Pipeline.LastFrameChunks;
         Assert.Equal(4, stepped); // 144 strands: chunks at 0, 32, 64, 96
         Assert.Equal(1, handedBack);
-        for (int f = 2; f <= 6; f++)
-        {
-            simC.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            simP.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            Assert.True(chunked.World.BitEquals(plain.World), $"the paths differ after frame {f}");
-        }
+        for (int f = 2; f <= 6; f++) StepBoth(simC, simP, f);
     }
 
     [Fact]
@@ -90,12 +81,8 @@ public class StrandChunkTests(ITestOutputHelper output)
             w.StrandParticleCount[10] = 9;
             w.MarkEdited();
         }
-        var sim = new HairSimulation(scene);
-        var simP = new HairSimulation(plain);
-        simP.Pipeline.UseStrandChunks = false;
-        sim.Step(1f / 60f, FastPathScenes.HeadAt(1));
-        simP.Step(1f / 60f, FastPathScenes.HeadAt(1));
-        Assert.True(scene.World.BitEquals(plain.World));
+        var (sim, simP) = Pair(scene, plain);
+        StepBoth(sim, simP, 1);
         // 144 strands, strand 10 cut: chunks start at 11, 43, 75, 107 (strands 0 … 10 and 139 … 143 go system by system).
         if (ChunksExpected) Assert.Equal(4, sim.Pipeline.LastFrameChunks.Stepped);
     }
@@ -113,6 +100,21 @@ public class StrandChunkTests(ITestOutputHelper output)
         Assert.Equal(0, sim.Pipeline.LastFrameChunks.Stepped);
         Assert.False(new HairSimulation(FastPathScenes.Build("straight", SolverPath.Fast), PipelineBuilder.CreateDefault(allowAvx512: false)).Pipeline.UsesStrandChunks);
         Assert.False(new HairSimulation(FastPathScenes.Build("straight", SolverPath.Reference)).Pipeline.UsesStrandChunks);
+    }
+
+    /// <summary>Simulations of two copies of a scene, chunks on and off.</summary>
+    private static (HairSimulation Chunked, HairSimulation Plain) Pair(HairScene chunked, HairScene plain)
+    {
+        var p = new HairSimulation(plain);
+        p.Pipeline.UseStrandChunks = false;
+        return (new HairSimulation(chunked), p);
+    }
+
+    private static void StepBoth(HairSimulation chunked, HairSimulation plain, int frame)
+    {
+        chunked.Step(1f / 60f, FastPathScenes.HeadAt(frame));
+        plain.Step(1f / 60f, FastPathScenes.HeadAt(frame));
+        Assert.True(chunked.Scene.World.BitEquals(plain.Scene.World), $"the paths differ after frame {frame}");
     }
 
     private sealed class Wind : IHairSystem
