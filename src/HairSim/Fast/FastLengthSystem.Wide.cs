@@ -86,8 +86,7 @@ public sealed partial class FastLengthSystem : IStrandChunkSystem
         ref Vector512<float> cFree)
     {
         var l2 = Vector512.ConditionalSelect(free, len2, Vector512<float>.One);
-        var y0 = Vector512.Create(Avx.ReciprocalSqrt(l2.GetLower()), Avx.ReciprocalSqrt(l2.GetUpper()));
-        var inv = y0 * (Vector512.Create(1.5f) - Vector512.Create(0.5f) * l2 * y0 * y0);
+        var inv = Simd.InvSqrt16(l2);
         var corr = Vector512.LoadUnsafe(ref d, (nuint)(p.Ol + r)) * inv - Vector512<float>.One;
         corr = Vector512.ConditionalSelect(free, corr, Vector512<float>.Zero);
         var dx = ex * corr; var dy = ey * corr; var dz = ez * corr;

@@ -40,7 +40,6 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
     private static bool ChunkGoals(scoped StrandChunk chunk)
     {
         var third = Vector512.Create(1f / 3f); var eps2 = Vector512.Create(1e-24f);
-        var half = Vector512.Create(0.5f); var threeHalves = Vector512.Create(1.5f);
         var bad = Vector512<float>.Zero;
         for (int lane = 0; lane < StrandChunk.Lanes; lane += 16)
         {
@@ -64,8 +63,7 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
                 var ok = Vector512.GreaterThan(len2, eps2);
                 bad |= ~ok;
                 var l2 = Vector512.ConditionalSelect(ok, len2, Vector512<float>.One);
-                var inv = Vector512.Create(Avx.ReciprocalSqrt(l2.GetLower()), Avx.ReciprocalSqrt(l2.GetUpper()));
-                inv *= threeHalves - half * l2 * inv * inv;
+                var inv = Simd.InvSqrt16(l2);
                 ex *= inv; ey *= inv; ez *= inv;
                 var pa = Vector512.LoadUnsafe(ref sp, r); var pm = Vector512.LoadUnsafe(ref sm, r); var pn = Vector512.LoadUnsafe(ref sn, r);
                 ((ox - ax) + pa * ex).StoreUnsafe(ref g, r); ((oy - ay) + pa * ey).StoreUnsafe(ref g, r + field);

@@ -36,7 +36,6 @@ public sealed partial class FastShapeMatchSystem
 
         var third = Vector512.Create(1f / 3f);
         var eps2 = Vector512.Create(1e-24f);
-        var half = Vector512.Create(0.5f); var threeHalves = Vector512.Create(1.5f);
         var fOne = Vector512.Create(p.F.GetElement(0)); var fHalf = Vector512.Create(p.FHalf.GetElement(0)); var fThird = Vector512.Create(p.FThird.GetElement(0));
         var lane = Vector512.Create(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
         int length = w.PosX.Length;
@@ -66,9 +65,7 @@ public sealed partial class FastShapeMatchSystem
                 var len2 = ex * ex + ey * ey + ez * ez;
                 var ok = Vector512.GreaterThan(len2, eps2);
                 var l2 = Vector512.ConditionalSelect(ok, len2, Vector512<float>.One);
-                // The 8-lane path's estimate (AVX rsqrt on each half) and Newton step, so both paths give identical bits.
-                var inv = Vector512.Create(Avx.ReciprocalSqrt(l2.GetLower()), Avx.ReciprocalSqrt(l2.GetUpper()));
-                inv *= threeHalves - half * l2 * inv * inv;
+                var inv = Simd.InvSqrt16(l2);
                 ex *= inv; ey *= inv; ez *= inv;
                 var kk = lane + Vector512.Create(k0);
                 var valid = (Vector512.GreaterThanOrEqual(kk, Vector512<int>.One) & Vector512.LessThanOrEqual(kk, lastTriple)).AsSingle();
@@ -119,12 +116,11 @@ public sealed partial class FastShapeMatchSystem
     /// <summary>Per-run constants of <see cref="Strand16"/>.</summary>
     private readonly struct Consts16
     {
-        public readonly Vector512<float> Third, Eps2, Half, ThreeHalves, Valid, F;
+        public readonly Vector512<float> Third, Eps2, Valid, F;
 
         public Consts16(in Params p)
         {
             Third = Vector512.Create(1f / 3f); Eps2 = Vector512.Create(1e-24f);
-            Half = Vector512.Create(0.5f); ThreeHalves = Vector512.Create(1.5f);
             // Triples 1 … 14 exist; particle j has 1, 2, 3, …, 3, 2, 1 goals.
             Valid = Vector512.Create(0, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0).AsSingle();
             float f1 = p.F.GetElement(0), f2 = p.FHalf.GetElement(0), f3 = p.FThird.GetElement(0);
@@ -152,8 +148,7 @@ public sealed partial class FastShapeMatchSystem
         var ok = Vector512.GreaterThan(len2, c.Eps2);
         if (Vector512.AndNot(c.Valid, ok) != Vector512<float>.Zero) return false;
         var l2 = Vector512.ConditionalSelect(ok, len2, Vector512<float>.One);
-        var inv = Vector512.Create(Avx.ReciprocalSqrt(l2.GetLower()), Avx.ReciprocalSqrt(l2.GetUpper()));
-        inv *= c.ThreeHalves - c.Half * l2 * inv * inv;
+        var inv = Simd.InvSqrt16(l2);
         ex *= inv; ey *= inv; ez *= inv;
         var pa = Vector512.LoadUnsafe(ref Simd.At(w.ShapePrev, first)); var pm = Vector512.LoadUnsafe(ref Simd.At(w.ShapeMid, first));
         var pn = Vector512.LoadUnsafe(ref Simd.At(w.ShapeNext, first));

@@ -50,6 +50,17 @@ internal static class Simd
         return Vector<float>.One / Vector.SquareRoot(x);
     }
 
+    /// <summary>
+    /// <see cref="InvSqrt"/> on 16 lanes (AVX-512 with AVX): the AVX estimate of each 8-lane half and the same Newton
+    /// step, so every lane gets the bits the 8-lane code gives it (AVX-512's own estimate differs).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static Vector512<float> InvSqrt16(Vector512<float> x)
+    {
+        var y = Vector512.Create(System.Runtime.Intrinsics.X86.Avx.ReciprocalSqrt(x.GetLower()), System.Runtime.Intrinsics.X86.Avx.ReciprocalSqrt(x.GetUpper()));
+        return y * (Vector512.Create(1.5f) - Vector512.Create(0.5f) * x * y * y);
+    }
+
     /// <summary>One bit per lane of a mask, lane 0 in bit 0.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static uint MaskBits(Vector<int> mask)
