@@ -101,7 +101,7 @@ public sealed class HairPipeline
 
         if (_substep.Length > 0)
         {
-            _chunkFrame = UsesStrandChunks && _chunks!.Ready(ctx);
+            _chunkFrame = UsesStrandChunks && _chunks!.BeginFrame(ctx);
             if (_chunkFrame) _chunks!.ResetCounts();
             // Small blocks (~ParticlesPerJob) keep a block's data in L2 across all its substeps and systems.
             long blocks = (world.ParticleCount + ParticlesPerJob - 1) / ParticlesPerJob;

@@ -23,18 +23,46 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
     public SystemPhase Phase => SystemPhase.Substep;
 
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end) =>
-        Resolve(ctx, substep, scene.World, begin, end, default, onChunk: false);
+        Resolve(ctx, substep, scene.World, begin, end);
 
     bool IStrandChunkSystem.SupportsChunks => _wide;
 
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    // This frame's kernel of each (substep, collider), built once for all chunks; the slot of the other kind is unused.
+    private EllipsoidKernel[] _chunkEllipsoids = [];
+    private CapsuleKernel[] _chunkCapsules = [];
+
+    bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {
-        Resolve(ctx, substep, scene.World, 0, 0, chunk, onChunk: true);
+        int n = ctx.Substeps * ctx.ColliderCount;
+        if (_chunkEllipsoids.Length < n) { _chunkEllipsoids = new EllipsoidKernel[n]; _chunkCapsules = new CapsuleKernel[n]; }
+        float slide = ctx.Settings.ContactSlide;
+        for (int s = 0; s < ctx.Substeps; s++)
+        {
+            var colliders = ctx.CollidersAt(s);
+            for (int c = 0; c < colliders.Length; c++)
+            {
+                int i = s * colliders.Length + c;
+                if (colliders[c].Kind == ColliderKind.Ellipsoid) _chunkEllipsoids[i] = new EllipsoidKernel(colliders[c], slide);
+                else _chunkCapsules[i] = new CapsuleKernel(colliders[c], slide);
+            }
+        }
         return true;
     }
 
-    /// <summary>Every collider of the substep, over strands [begin, end) of the world or over a chunk's rows.</summary>
-    private void Resolve(FrameContext ctx, int substep, HairWorld w, int begin, int end, scoped StrandChunk chunk, bool onChunk)
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    {
+        var colliders = ctx.CollidersAt(substep);
+        for (int c = 0; c < colliders.Length; c++)
+        {
+            int i = substep * colliders.Length + c;
+            if (colliders[c].Kind == ColliderKind.Ellipsoid) chunk.ForEachCell(ref _chunkEllipsoids[i]);
+            else chunk.ForEachCell(ref _chunkCapsules[i]);
+        }
+        return true;
+    }
+
+    /// <summary>Every collider of the substep, over strands [begin, end).</summary>
+    private void Resolve(FrameContext ctx, int substep, HairWorld w, int begin, int end)
     {
         var colliders = ctx.CollidersAt(substep);
         float slide = ctx.Settings.ContactSlide;
@@ -44,14 +72,12 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
             if (col.Kind == ColliderKind.Ellipsoid)
             {
                 var k = new EllipsoidKernel(col, slide);
-                if (onChunk) chunk.ForEachCell(ref k);
-                else ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
+                ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
             }
             else
             {
                 var k = new CapsuleKernel(col, slide);
-                if (onChunk) chunk.ForEachCell(ref k);
-                else ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
+                ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
             }
         }
     }

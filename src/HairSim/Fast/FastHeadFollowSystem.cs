@@ -111,13 +111,25 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         }
     }
 
+    // This frame's rigid carry and each substep's pin kernel, built once for all chunks.
+    private PoseLanes _chunkCarry;
+    private PinKernel[] _chunkPins = [];
+
+    bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
+    {
+        _chunkCarry = new PoseLanes(ctx.TeleportDelta);
+        if (_chunkPins.Length < ctx.Substeps) _chunkPins = new PinKernel[ctx.Substeps];
+        for (int s = 0; s < ctx.Substeps; s++) _chunkPins[s] = new PinKernel(new PoseLanes(ctx.HeadAt(s)));
+        return true;
+    }
+
     /// <summary>As <see cref="Run"/> on a chunk: the rigid carry on a teleport, then the rows that hold pins, 8 lanes at a time as <see cref="PinKernel"/>.</summary>
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         int width = Vector<float>.Count;
         if (substep == 0 && ctx.Teleported)
         {
-            var delta = new PoseLanes(ctx.TeleportDelta);
+            ref readonly var delta = ref _chunkCarry;
             ref float px = ref chunk.Row(StrandChunk.X, 0), py = ref chunk.Row(StrandChunk.Y, 0), pz = ref chunk.Row(StrandChunk.Z, 0);
             ref float vx = ref chunk.Row(StrandChunk.VelX, 0), vy = ref chunk.Row(StrandChunk.VelY, 0), vz = ref chunk.Row(StrandChunk.VelZ, 0);
             for (int i = 0; i < StrandChunk.Cells; i += width)
@@ -129,7 +141,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
             }
         }
         if (chunk.PinnedRows == 0) return true;
-        var kernel = new PinKernel(new PoseLanes(ctx.HeadAt(substep)));
+        ref readonly var kernel = ref _chunkPins[substep];
         for (int rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
         {
             int k = BitOperations.TrailingZeroCount(rows);

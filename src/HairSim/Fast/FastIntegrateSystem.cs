@@ -23,20 +23,31 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
 
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
-        var st = ctx.Settings;
-        float h = ctx.H;
-        var kernel = new Kernel(h, st.Gravity * h, MathF.Max(0f, 1f - st.Damping * h), st.MaxSpeed);
+        var kernel = MakeKernel(ctx);
         ParticleRuns.ForEachLiveWide(scene.World, begin, end, ref kernel, _wide);
     }
 
-    bool IStrandChunkSystem.SupportsChunks => _wide;
-
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    private static Kernel MakeKernel(FrameContext ctx)
     {
         var st = ctx.Settings;
         float h = ctx.H;
-        var kernel = new Kernel(h, st.Gravity * h, MathF.Max(0f, 1f - st.Damping * h), st.MaxSpeed);
-        chunk.ForEachCell(ref kernel);
+        return new Kernel(h, st.Gravity * h, MathF.Max(0f, 1f - st.Damping * h), st.MaxSpeed);
+    }
+
+    /// <summary>This frame's kernel, built once for all chunks (all substeps share it).</summary>
+    private Kernel _chunkKernel;
+
+    bool IStrandChunkSystem.SupportsChunks => _wide;
+
+    bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
+    {
+        _chunkKernel = MakeKernel(ctx);
+        return true;
+    }
+
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    {
+        chunk.ForEachCell(ref _chunkKernel);
         return true;
     }
 

@@ -14,7 +14,16 @@ public sealed partial class FastLengthSystem : IStrandChunkSystem
 {
     bool IStrandChunkSystem.SupportsChunks => UsesWide;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
-    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) => ctx.Settings.Length is LengthMode.None or LengthMode.FollowTheLeader;
+    /// <summary>Each substep's head pose (the sweep's fallback axis), built once per frame for all chunks.</summary>
+    private PoseLanes[] _chunkHeads = [];
+
+    bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
+    {
+        if (ctx.Settings.Length is not (LengthMode.None or LengthMode.FollowTheLeader)) return false;
+        if (_chunkHeads.Length < ctx.Substeps) _chunkHeads = new PoseLanes[ctx.Substeps];
+        for (int s = 0; s < ctx.Substeps; s++) _chunkHeads[s] = new PoseLanes(ctx.HeadAt(s));
+        return true;
+    }
 
     /// <summary>
     /// The sweep on a chunk, whose first slots are this system's tile fields: no gather or scatter, only the velocity
@@ -24,8 +33,7 @@ public sealed partial class FastLengthSystem : IStrandChunkSystem
     {
         var st = ctx.Settings;
         if (st.Length == LengthMode.None) return true;
-        var head = new PoseLanes(ctx.HeadAt(substep));
-        FollowTheLeader16(scene.World, chunk.Tile, chunk.Firsts, StrandChunk.Rows, ctx.H, st.LengthDamping, in head);
+        FollowTheLeader16(scene.World, chunk.Tile, chunk.Firsts, StrandChunk.Rows, ctx.H, st.LengthDamping, in _chunkHeads[substep]);
         for (int f = 0; f < 3; f++)
         {
             ref float v = ref chunk.Row(StrandChunk.VelX + f, 0);

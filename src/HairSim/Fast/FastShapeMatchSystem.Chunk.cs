@@ -15,7 +15,7 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.Shape;
 
     /// <summary>The 16-lane path's case: no global stiffness (or nothing to do at all).</summary>
-    bool IStrandChunkSystem.ChunkReady(FrameContext ctx) =>
+    bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx) =>
         ctx.Settings.GlobalShapeStiffness == 0f || (ctx.Settings.Alpha <= 0f && ctx.Settings.GlobalShapeStiffness <= 0f);
 
     int IStrandChunkSystem.RefusedLane(HairWorld w, int s0)

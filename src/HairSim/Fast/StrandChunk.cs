@@ -79,8 +79,12 @@ internal interface IStrandChunkSystem
     /// <summary>Whether this instance can run on chunks at all (the chunk kernels are 16-lane AVX-512 code).</summary>
     bool SupportsChunks { get; }
     ChunkFields ChunkNeeds => ChunkFields.None;
-    /// <summary>Whether this frame's settings take the chunk kernel (else every strand goes through <see cref="IHairSystem.Run"/>).</summary>
-    bool ChunkReady(FrameContext ctx) => true;
+    /// <summary>
+    /// Once per frame, before any chunk, on the calling thread: builds what every chunk of a substep shares (kernels,
+    /// head poses), so no chunk builds it again. False: this frame's settings do not take the chunk kernel, and every
+    /// strand goes through <see cref="IHairSystem.Run"/>.
+    /// </summary>
+    bool BeginChunkFrame(FrameContext ctx) => true;
     /// <summary>The first of the 32 strands from s0 that may not go into a chunk (e.g. shape matching: a bent rest shape), or −1.</summary>
     int RefusedLane(HairWorld w, int s0) => -1;
     /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
@@ -131,10 +135,10 @@ internal sealed class StrandChunkRunner
     /// <summary>Chunks stepped since <see cref="ResetCounts"/>, and how many of them went back to the ordinary path midway.</summary>
     public (int Stepped, int HandedBack) Counts => (Volatile.Read(ref _stepped), Volatile.Read(ref _handedBack));
 
-    /// <summary>Whether this frame's settings let every system run on chunks.</summary>
-    public bool Ready(FrameContext ctx)
+    /// <summary>Prepares every system's chunk kernel for this frame; false if some system's settings do not take it.</summary>
+    public bool BeginFrame(FrameContext ctx)
     {
-        foreach (var c in _chunkSystems) if (!c.ChunkReady(ctx)) return false;
+        foreach (var c in _chunkSystems) if (!c.BeginChunkFrame(ctx)) return false;
         return true;
     }
 
