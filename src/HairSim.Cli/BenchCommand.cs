@@ -95,7 +95,7 @@ public static class BenchCommand
         if (systems)
         {
             var groom = GroomSettings.Reference();
-            foreach (var system in new[] { HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, LengthSystem.SystemName, CollideSystem.SystemName })
+            foreach (var system in new[] { HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, LengthSystem.SystemName, CollideSystem.SystemName, InterpolateSystem.SystemName })
             {
                 rows.Add(OneSystem(groom, system, SolverPath.Reference, SequentialDispatcher.Instance, 1, Math.Max(3, frames / 4)));
                 rows.Add(OneSystem(groom, system, SolverPath.Fast, SequentialDispatcher.Instance, 1, frames));
@@ -199,6 +199,7 @@ public static class BenchCommand
         bool allowAvx512 = true)
     {
         var scene = Scene(groom, path);
+        if (system == InterpolateSystem.SystemName) scene.Render = new RenderSettings(); // one render strand per gap, the default
         // A moving state: one second of the full simulation with a shaking head, then the system alone from there.
         var warm = new HairSimulation(scene, dispatcher: dispatcher);
         float dt = 1f / 60f;
@@ -223,17 +224,19 @@ public static class BenchCommand
             times[i] = sw.Elapsed.TotalMilliseconds;
             bytes += GC.GetTotalAllocatedBytes(true) - b0;
         }
-        var row = Summarise("reference 435×40×16", system, path, threads, scene, times, bytes, frames);
+        // Interpolate runs once per frame, so its "step" is the frame and its particles are each processed once.
+        var row = Summarise("reference 435×40×16", system, path, threads, scene, times, bytes, frames,
+            system == InterpolateSystem.SystemName ? 1 : null);
         if (!allowAvx512) row = row with { Path = "fast, 8-lane" };
         Console.Error.WriteLine($"{system,-22} {Label(row),-18} {row.MedianMs,9:F3} ms/frame");
         return row;
     }
 
-    private static Row Summarise(string name, string part, SolverPath path, int threads, HairScene scene, double[] times, long bytes, int frames)
+    private static Row Summarise(string name, string part, SolverPath path, int threads, HairScene scene, double[] times, long bytes, int frames, int? passesPerFrame = null)
     {
         var sorted = (double[])times.Clone();
         Array.Sort(sorted);
-        int substeps = scene.Settings.Substeps;
+        int substeps = passesPerFrame ?? scene.Settings.Substeps;
         return new Row(name, part, path == SolverPath.Fast ? "fast" : "reference", threads, scene.World.StrandCount, scene.World.ParticleCount,
             frames, sorted[sorted.Length / 2], sorted[0], bytes / (double)(frames * substeps), substeps);
     }
@@ -270,7 +273,7 @@ public static class BenchCommand
         sb.AppendLine($"- Runtime: {RuntimeInformation.FrameworkDescription}, SIMD width {System.Numerics.Vector<float>.Count} floats (Vector<float>), hardware acceleration {System.Numerics.Vector.IsHardwareAccelerated}");
         sb.AppendLine($"- Date: {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC");
         sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ substeps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn), timed in the same simulation as chunks on, alternating blocks of 10 frames: before/after in one run.");
-        sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world), each frame starting from the same warm state (1 s of shaking), on the reference scene.");
+        sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world), each frame starting from the same warm state (1 s of shaking), on the reference scene. Interpolate is the render interpolation, once per frame (the scene gets default render settings: one render strand between neighbours, 549,840 render points); the whole-frame rows have no render strands (docs/leave-out.md times frames with them).");
         sb.AppendLine("- All rows come from one run on a shared machine (other builds may run at the same time): compare rows within the table, and rerun for absolute numbers.");
         sb.AppendLine();
         sb.Append(table);

@@ -9,6 +9,7 @@ var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
     ["report"] = (ReportCommand.Help, ReportCommand.Execute),
     ["stability"] = (StabilityCommand.Help, StabilityCommand.Execute),
     ["bench"] = (BenchCommand.Help, BenchCommand.Execute),
+    ["leave-out"] = (LeaveOutCommand.Help, LeaveOutCommand.Execute),
 };
 
 if (args.Length == 0 || args[0] is "-h" or "--help" or "help")

@@ -2,7 +2,7 @@ using HairSim.Fast;
 
 namespace HairSim;
 
-/// <summary>Supplies the fast implementation of each core substep system (see <see cref="SolverPath.Fast"/>).</summary>
+/// <summary>Supplies the fast implementation of each core system (see <see cref="SolverPath.Fast"/>).</summary>
 internal static partial class FastPathRegistration
 {
     static partial void ApplyFast(PipelineBuilder builder, bool allowWide)
@@ -16,6 +16,7 @@ internal static partial class FastPathRegistration
                 IntegrateSystem.SystemName => _ => new FastIntegrateSystem(allowWide),
                 LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide),
                 CollideSystem.SystemName => _ => new FastCollideSystem(allowWide),
+                InterpolateSystem.SystemName => s => new FastInterpolateSystem(s),
                 _ => null,
             };
             if (fast != null) builder.Replace(f with { CreateFast = fast });

@@ -131,6 +131,62 @@ public static class SvgPlot
         return sb.ToString();
     }
 
+    /// <summary>
+    /// Grouped horizontal bars on a linear axis from 0: one group per <paramref name="groupLabels"/> entry, one bar per
+    /// series in each (values[series][group], drawn with its value). Non-finite or negative values draw no bar.
+    /// </summary>
+    public static string Bars(string title, string valueLabel, IReadOnlyList<string> groupLabels, IReadOnlyList<string> seriesLabels, double[][] values)
+    {
+        if (values.Length != seriesLabels.Count) throw new ArgumentException("One row of values per series.", nameof(values));
+        foreach (var row in values)
+            if (row.Length != groupLabels.Count) throw new ArgumentException("One value per group in every series.", nameof(values));
+        const int left = 190, right = 60, top = 40, bar = 14, gap = 12;
+        int groupHeight = seriesLabels.Count * bar + gap;
+        int width = 860, height = top + groupLabels.Count * groupHeight + 50 + 18 * seriesLabels.Count;
+        double pw = width - left - right, max = 0;
+        foreach (var row in values) foreach (double v in row) if (double.IsFinite(v)) max = Math.Max(max, v);
+        max = max > 0 ? NiceCeiling(max) : 1;
+        double Px(double v) => left + v / max * pw;
+
+        var sb = new StringBuilder();
+        Header(sb, width, height, title);
+        double axisY = top + groupLabels.Count * groupHeight;
+        for (int k = 0; k <= 5; k++)
+        {
+            double v = max * k / 5, x = Px(v);
+            sb.Append(F($"<line x1='{x:F1}' y1='{top}' x2='{x:F1}' y2='{axisY}' stroke='#ddd'/><text x='{x:F1}' y='{axisY + 16}' text-anchor='middle'>{v:0.##}</text>\n"));
+        }
+        sb.Append(F($"<text x='{left + pw / 2}' y='{axisY + 34}' text-anchor='middle'>{Esc(valueLabel)}</text>\n"));
+        for (int g = 0; g < groupLabels.Count; g++)
+        {
+            double y0 = top + g * groupHeight;
+            sb.Append(F($"<text x='{left - 8}' y='{y0 + seriesLabels.Count * bar / 2.0 + 4:F1}' text-anchor='end'>{Esc(groupLabels[g])}</text>\n"));
+            for (int k = 0; k < seriesLabels.Count; k++)
+            {
+                double v = values[k][g];
+                if (!double.IsFinite(v) || v < 0) continue;
+                double y = y0 + k * bar;
+                sb.Append(F($"<rect x='{left}' y='{y:F1}' width='{Px(v) - left:F1}' height='{bar - 2}' fill='{Palette[k % Palette.Length]}'><title>{Esc(seriesLabels[k])}: {v:0.###}</title></rect>"));
+                sb.Append(F($"<text x='{Px(v) + 4:F1}' y='{y + bar - 4:F1}' font-size='10'>{v:0.##}</text>\n"));
+            }
+        }
+        for (int k = 0; k < seriesLabels.Count; k++)
+        {
+            double y = axisY + 48 + 18 * k;
+            sb.Append(F($"<rect x='{left}' y='{y - 10}' width='14' height='12' fill='{Palette[k % Palette.Length]}'/><text x='{left + 20}' y='{y}'>{Esc(seriesLabels[k])}</text>\n"));
+        }
+        sb.Append("</svg>\n");
+        return sb.ToString();
+    }
+
+    /// <summary>The smallest of 1, 2, 2.5, 5 × 10^k at or above <paramref name="v"/> (v &gt; 0).</summary>
+    private static double NiceCeiling(double v)
+    {
+        double p = Math.Pow(10, Math.Floor(Math.Log10(v)));
+        foreach (double m in new[] { 1, 2, 2.5, 5, 10 }) if (m * p >= v) return m * p;
+        return 10 * p;
+    }
+
     private static void Header(StringBuilder sb, int width, int height, string title)
     {
         sb.Append(F($"<svg xmlns='http://www.w3.org/2000/svg' width='{width}' height='{height}' viewBox='0 0 {width} {height}' font-family='sans-serif' font-size='12'>\n"));

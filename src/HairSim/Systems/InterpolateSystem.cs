@@ -5,7 +5,8 @@ namespace HairSim;
 /// <summary>
 /// Render strands between a sheet's simulated strands, along the Catmull-Rom curves through the particles
 /// with the same index (SPEC A.1). Interpolated strands take the length between their neighbours', so
-/// they follow a cut.
+/// they follow a cut. This is the reference (double precision inside, like every reference system);
+/// <see cref="Fast.FastInterpolateSystem"/> is the fast path's twin.
 /// </summary>
 public sealed class InterpolateSystem : IHairSystem
 {
@@ -49,7 +50,7 @@ public sealed class InterpolateSystem : IHairSystem
                         var p1 = At(w, sj, k); var p2 = At(w, sn, k);
                         var p0 = j > 0 ? At(w, sj - 1, k) : CatmullRom.Mirror(p1, p2);
                         var p3 = j + 2 < ns ? At(w, sn + 1, k) : CatmullRom.Mirror(p2, p1);
-                        pts[r * stride + k] = CatmullRom.Evaluate(p0, p1, p2, p3, t);
+                        pts[r * stride + k] = CatmullRom.EvaluatePrecise(p0, p1, p2, p3, t);
                     }
                     _out.Counts[r++] = count;
                 }
@@ -58,5 +59,5 @@ public sealed class InterpolateSystem : IHairSystem
     }
 
     /// <summary>Particle k of strand s, clamped to its live tip.</summary>
-    private static Vector3 At(HairWorld w, int s, int k) => w.GetPosition(w.StrandFirst[s] + Math.Min(k, w.StrandParticleCount[s] - 1));
+    internal static Vector3 At(HairWorld w, int s, int k) => w.GetPosition(w.StrandFirst[s] + Math.Min(k, w.StrandParticleCount[s] - 1));
 }
