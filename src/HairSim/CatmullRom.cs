@@ -10,32 +10,12 @@ namespace HairSim;
 /// </summary>
 public static class CatmullRom
 {
-    /// <summary>Point at t ∈ [0, 1] on the segment p1 → p2, with p0 and p3 the neighbours.</summary>
-    public static Vector3 Evaluate(Vector3 p0, Vector3 p1, Vector3 p2, Vector3 p3, float t)
-    {
-        float d01 = MathF.Sqrt(Vector3.Distance(p0, p1));
-        float d12 = MathF.Sqrt(Vector3.Distance(p1, p2));
-        float d23 = MathF.Sqrt(Vector3.Distance(p2, p3));
-        const float eps = 1e-6f;
-        if (d12 < eps) d12 = 1f;
-        if (d01 < eps) d01 = d12;
-        if (d23 < eps) d23 = d12;
-        float t0 = 0f, t1 = d01, t2 = t1 + d12, t3 = t2 + d23;
-        float u = t1 + t * d12;
-        var a1 = ((t1 - u) * p0 + (u - t0) * p1) / (t1 - t0);
-        var a2 = ((t2 - u) * p1 + (u - t1) * p2) / (t2 - t1);
-        var a3 = ((t3 - u) * p2 + (u - t2) * p3) / (t3 - t2);
-        var b1 = ((t2 - u) * a1 + (u - t0) * a2) / (t2 - t0);
-        var b2 = ((t3 - u) * a2 + (u - t1) * a3) / (t3 - t1);
-        return ((t2 - u) * b1 + (u - t1) * b2) / (t2 - t1);
-    }
-
     /// <summary>
-    /// <see cref="Evaluate"/> in double precision, rounded to float once at the end: the reference render
-    /// interpolation (the oracle of the fast one), free of the float cancellation Barry–Goldman suffers when
-    /// neighbours nearly coincide.
+    /// Point at t ∈ [0, 1] on the segment p1 → p2, with p0 and p3 the neighbours. Computed in double and rounded to
+    /// float once at the end: this is the reference render interpolation (the oracle of the fast one), free of the
+    /// cancellation float Barry–Goldman suffers when neighbours nearly coincide (its weights grow like d12/d01).
     /// </summary>
-    public static Vector3 EvaluatePrecise(Vector3 p0, Vector3 p1, Vector3 p2, Vector3 p3, float t)
+    public static Vector3 Evaluate(Vector3 p0, Vector3 p1, Vector3 p2, Vector3 p3, float t)
     {
         double d01 = Math.Sqrt(Distance(p0, p1)), d12 = Math.Sqrt(Distance(p1, p2)), d23 = Math.Sqrt(Distance(p2, p3));
         const double eps = 1e-6;

@@ -101,14 +101,7 @@ public sealed class FastInterpolateSystem : IHairSystem
                 }
                 else { e3x = e2x + e2x; e3y = e2y + e2y; e3z = e2z + e2z; f3x = e2x; f3y = e2y; f3z = e2z; }
 
-                var d01 = Knot(e0x, e0y, e0z);
-                var d12 = Knot(e2x, e2y, e2z);
-                var d23 = Knot(f3x, f3y, f3z);
-                var eps = new Vector<float>(Eps);
-                d12 = Vector.ConditionalSelect(Vector.LessThan(d12, eps), Vector<float>.One, d12);
-                d01 = Vector.ConditionalSelect(Vector.LessThan(d01, eps), d12, d01);
-                d23 = Vector.ConditionalSelect(Vector.LessThan(d23, eps), d12, d23);
-                Weights(vt, vs, d01, d12, d23, out var c0, out var c2, out var c3);
+                Weights(vt, vs, e0x, e0y, e0z, e2x, e2y, e2z, f3x, f3y, f3z, out var c0, out var c2, out var c3);
                 var x = x1 + c0 * e0x + c2 * e2x + c3 * e3x;
                 var y = y1 + c0 * e0y + c2 * e2y + c3 * e3y;
                 var z = z1 + c0 * e0z + c2 * e2z + c3 * e3z;
@@ -124,13 +117,23 @@ public sealed class FastInterpolateSystem : IHairSystem
         Vector.SquareRoot(Vector.SquareRoot(x * x + y * y + z * z));
 
     /// <summary>
-    /// The weights of p0, p2 and p3 (p1's is 1 minus their sum) for knot spacings d01, d12, d23 at t (s = 1 − t):
-    /// Barry–Goldman's lerps A1, A2 = s·p1 + t·p2, A3, then B1, B2, then s·B1 + t·B2, multiplied out.
+    /// The weights of p0, p2 and p3 (p1's is 1 minus their sum) at t (s = 1 − t), from the offsets p0 − p1, p2 − p1
+    /// and p3 − p2: knot spacings √|offset| with the reference's fallbacks for coincident points, then Barry–Goldman's
+    /// lerps A1, A2 = s·p1 + t·p2, A3, then B1, B2, then s·B1 + t·B2, multiplied out.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Weights(Vector<float> t, Vector<float> s, Vector<float> d01, Vector<float> d12, Vector<float> d23,
+    private static void Weights(Vector<float> t, Vector<float> s,
+        Vector<float> e0x, Vector<float> e0y, Vector<float> e0z, Vector<float> e2x, Vector<float> e2y, Vector<float> e2z,
+        Vector<float> f3x, Vector<float> f3y, Vector<float> f3z,
         out Vector<float> c0, out Vector<float> c2, out Vector<float> c3)
     {
+        var d01 = Knot(e0x, e0y, e0z);
+        var d12 = Knot(e2x, e2y, e2z);
+        var d23 = Knot(f3x, f3y, f3z);
+        var eps = new Vector<float>(Eps);
+        d12 = Vector.ConditionalSelect(Vector.LessThan(d12, eps), Vector<float>.One, d12);
+        d01 = Vector.ConditionalSelect(Vector.LessThan(d01, eps), d12, d01);
+        d23 = Vector.ConditionalSelect(Vector.LessThan(d23, eps), d12, d23);
         var td = t * d12;
         var sd = s * d12;
         var a10 = -td / d01;              // A1's weight of p0: (t1 − u) / (t1 − t0)
@@ -162,14 +165,10 @@ public sealed class FastInterpolateSystem : IHairSystem
         var e2 = InterpolateSystem.At(w, s + 1, k) - p1;
         var e0 = hasPrev ? InterpolateSystem.At(w, s - 1, k) - p1 : -e2;
         var e3 = hasNext ? InterpolateSystem.At(w, s + 2, k) - p1 : e2 + e2;
-        float d01 = Knot(e0), d12 = Knot(e2), d23 = Knot(hasNext ? e3 - e2 : e2);
-        if (d12 < Eps) d12 = 1f;
-        if (d01 < Eps) d01 = d12;
-        if (d23 < Eps) d23 = d12;
-        Weights(new Vector<float>(t), new Vector<float>(1f - t), new Vector<float>(d01), new Vector<float>(d12), new Vector<float>(d23),
-            out var c0, out var c2, out var c3);
+        var f3 = hasNext ? e3 - e2 : e2;
+        // The lanes' arithmetic on broadcast vectors: the same knots, fallbacks and weights as the SIMD loop.
+        Weights(new Vector<float>(t), new Vector<float>(1f - t), new(e0.X), new(e0.Y), new(e0.Z), new(e2.X), new(e2.Y), new(e2.Z),
+            new(f3.X), new(f3.Y), new(f3.Z), out var c0, out var c2, out var c3);
         return p1 + c0[0] * e0 + c2[0] * e2 + c3[0] * e3;
     }
-
-    private static float Knot(Vector3 e) => MathF.Sqrt(MathF.Sqrt(e.LengthSquared()));
 }

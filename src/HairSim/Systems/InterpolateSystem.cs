@@ -50,7 +50,7 @@ public sealed class InterpolateSystem : IHairSystem
                         var p1 = At(w, sj, k); var p2 = At(w, sn, k);
                         var p0 = j > 0 ? At(w, sj - 1, k) : CatmullRom.Mirror(p1, p2);
                         var p3 = j + 2 < ns ? At(w, sn + 1, k) : CatmullRom.Mirror(p2, p1);
-                        pts[r * stride + k] = CatmullRom.EvaluatePrecise(p0, p1, p2, p3, t);
+                        pts[r * stride + k] = CatmullRom.Evaluate(p0, p1, p2, p3, t);
                     }
                     _out.Counts[r++] = count;
                 }
