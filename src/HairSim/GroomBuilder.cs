@@ -5,8 +5,9 @@ namespace HairSim;
 /// <summary>
 /// Grows hair sheets on an ellipsoid head. Sheet centres follow a Fibonacci lattice over the scalp region
 /// (even coverage without rows); each sheet is a row of strands across the scalp (along the horizontal
-/// tangent), with jittered roots so no streaks show. Strands start straight along the scalp normal; the
-/// straight rest shape is the source's model.
+/// tangent), with jittered roots so no streaks show. Strands leave the scalp along its normal and, with
+/// <see cref="GroomSettings.Drape"/>, are combed down over the head (kept outside it) and fall: the rest pose is a
+/// hairstyle at rest. With Drape 0 they stand straight out along the normal, the source's groom.
 /// </summary>
 public static class GroomBuilder
 {
@@ -38,11 +39,51 @@ public static class GroomBuilder
                 var onSphere = dir * 0.1f + tangent * (across + jx) + bitangent * jy;
                 var (root, normal) = SurfacePoint(g, onSphere);
                 root += normal * g.RootLift;
-                for (int k = 0; k < pts.Length; k++) pts[k] = root + normal * (segment * k);
+                Comb(g, root, normal, segment, pts);
                 world.SetStrand(world.SheetFirstStrand[q] + j, pts, g.PinnedPerStrand, straightRestShape: true);
             }
         }
         return world;
+    }
+
+    /// <summary>
+    /// One strand's rest points: out of the scalp along the normal for the pinned particles, then turning towards
+    /// straight down at up to Drape / (mean head radius) radians per metre, pushed back outside the head (plus the root
+    /// lift) wherever a step would enter it, every segment exactly <paramref name="segment"/> long.
+    /// </summary>
+    private static void Comb(GroomSettings g, Vector3 root, Vector3 normal, float segment, Vector3[] pts)
+    {
+        pts[0] = root;
+        var dir = normal;
+        var down = -Vector3.UnitY;
+        var a = g.HeadRadii;
+        float turn = g.Drape * segment * 12f / (a.X + a.Y + a.Z); // a bend radius of a quarter of the head's
+        var shell = a + new Vector3(g.RootLift);
+        for (int k = 1; k < pts.Length; k++)
+        {
+            if (k >= g.PinnedPerStrand && turn > 0f)
+            {
+                float angle = MathF.Acos(Math.Clamp(Vector3.Dot(dir, down), -1f, 1f));
+                if (angle > 1e-6f)
+                {
+                    var axis = Vector3.Cross(dir, down);
+                    axis = axis.LengthSquared() > 1e-12f ? Vector3.Normalize(axis) : Vector3.UnitX;
+                    dir = Vector3.Normalize(Vector3.Transform(dir, Quaternion.CreateFromAxisAngle(axis, MathF.Min(turn, angle))));
+                }
+            }
+            var next = pts[k - 1] + dir * segment;
+            for (int it = 0; it < 3 && turn > 0f; it++)
+            {
+                var local = (next - g.HeadCenter) / shell;
+                float r2 = local.LengthSquared();
+                if (r2 >= 1f) break;
+                // Radially out onto the shell, then back to the segment length from the previous point.
+                next = g.HeadCenter + (next - g.HeadCenter) / MathF.Sqrt(r2);
+                dir = Vector3.Normalize(next - pts[k - 1]);
+                next = pts[k - 1] + dir * segment;
+            }
+            pts[k] = next;
+        }
     }
 
     /// <summary>A ready scene: the groomed world, its head ellipsoid as collider, and the given settings.</summary>

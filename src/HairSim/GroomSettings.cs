@@ -24,6 +24,12 @@ public sealed class GroomSettings
     public int PinnedPerStrand { get; set; } = 2;
     /// <summary>Roots sit this far outside the scalp surface (metres), so strands do not start in contact.</summary>
     public float RootLift { get; set; } = 0.002f;
+    /// <summary>
+    /// How the rest pose is combed: 0 = straight out along the scalp normal (the source's groom), 1 = combed down over
+    /// the head and falling (a hairstyle at rest, which the default <see cref="BendModel.RestShape"/> holds), values
+    /// between bend down less. The rest shape is what the bend model keeps, so a groom that should hang must be grown hanging.
+    /// </summary>
+    public float Drape { get; set; } = 1f;
     public ulong Seed { get; set; } = 2009;
 
     public long TotalParticles => (long)SheetCount * StrandsPerSheet * ParticlesPerStrand;
@@ -57,6 +63,8 @@ public sealed class GroomSettings
             throw new ArgumentOutOfRangeException(nameof(SheetWidth), SheetWidth, "Sheet width must be in (0, 10].");
         if (PinnedPerStrand < 1 || PinnedPerStrand >= ParticlesPerStrand)
             throw new ArgumentOutOfRangeException(nameof(PinnedPerStrand), PinnedPerStrand, "Pinned particles per strand must be at least 1 and fewer than the particles per strand.");
+        if (!float.IsFinite(Drape) || Drape < 0f || Drape > 1f)
+            throw new ArgumentOutOfRangeException(nameof(Drape), Drape, "Drape must be in 0 … 1.");
         if (!float.IsFinite(RootLift) || RootLift < 0f || RootLift > 0.1f)
             throw new ArgumentOutOfRangeException(nameof(RootLift), RootLift, "Root lift must be in 0 … 0.1 m.");
     }

@@ -15,7 +15,7 @@ public sealed class HairPipeline
     private readonly IThreadDispatcher _dispatcher;
     private readonly FrameContext _ctx = new();
     private readonly SimulationSettings _guarded = new();
-    private float _reach;
+    private float _reach, _segment;
     private int _reachStamp;
     private readonly Action<int> _substepJob, _frameEndJob;
     private int _jobCount;
@@ -39,6 +39,7 @@ public sealed class HairPipeline
         _frameEndJob = RunFrameEndJob;
         SystemNames = Array.ConvertAll(_all, s => s.Name);
         _reach = StabilityGuards.Reach(scene.World);
+        _segment = StabilityGuards.MeanSegment(scene.World);
         _reachStamp = scene.World.EditStamp;
     }
 
@@ -73,9 +74,12 @@ public sealed class HairPipeline
         var requested = _scene.Settings;
         float headMove = (headTarget.Position - world.Head.Position).Length();
         bool teleported = headMove > requested.TeleportDistance || delta.Angle > requested.TeleportAngle;
-        if (world.EditStamp != _reachStamp) { _reach = StabilityGuards.Reach(world); _reachStamp = world.EditStamp; } // only after edits
+        if (world.EditStamp != _reachStamp) // only after edits
+        {
+            _reach = StabilityGuards.Reach(world); _segment = StabilityGuards.MeanSegment(world); _reachStamp = world.EditStamp;
+        }
         // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
-        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _reach);
+        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _reach, _segment);
         var st = _guarded;
         ctx.Settings = st;
         ctx.Dt = dt;

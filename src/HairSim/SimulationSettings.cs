@@ -21,6 +21,21 @@ public enum LengthMode
     Pbd,
 }
 
+/// <summary>What keeps a strand's shape (bending), see docs/styles.md.</summary>
+public enum BendModel
+{
+    /// <summary>
+    /// The default: every segment is held at its rest direction in its parent segment's frame, swept root to tip
+    /// (<see cref="BendSystem"/>), with an implicit, time-step-free compliance set by <see cref="SimulationSettings.Sag"/>.
+    /// Straight, curled and fitted rest shapes hold against gravity and come back after the head moves.
+    /// </summary>
+    RestShape,
+    /// <summary>The source's triple shape matching (SPEC A.3) with <see cref="SimulationSettings.Alpha"/> and <see cref="SimulationSettings.Mode"/>, exactly as it describes it.</summary>
+    SourceTriples,
+    /// <summary>No bending at all: hair hangs and swings like a chain.</summary>
+    Limp,
+}
+
 /// <summary>Which implementation of each system the pipeline uses.</summary>
 public enum SolverPath
 {
@@ -34,6 +49,19 @@ public enum SolverPath
 public sealed class SimulationSettings
 {
     public Vector3 Gravity { get; set; } = new(0f, -9.81f, 0f);
+    /// <summary>What keeps a strand's shape; <see cref="BendModel.RestShape"/> by default.</summary>
+    public BendModel Bend { get; set; } = BendModel.RestShape;
+    /// <summary>
+    /// Bending stiffness of <see cref="BendModel.RestShape"/>, given as what it looks like: how far the tip of a
+    /// straight horizontal strand sags under 1 g, as a share of the strand's length, whatever its length, particle count
+    /// or the frame rate. 0 = rigid, 0.01 = styled hair that holds (the default), 0.1 = soft hair, 1 and above = nearly limp.
+    /// </summary>
+    public float Sag { get; set; } = 0.01f;
+    /// <summary>
+    /// Damping ratio of bending under <see cref="BendModel.RestShape"/> (a dashpot in each joint, relative to its own
+    /// stiffness, so scale- and rate-free): 0 = a bent strand rings, 1 = it returns to its shape without overshoot.
+    /// </summary>
+    public float BendDamping { get; set; } = 0.5f;
     /// <summary>Shape-matching stiffness α (Müller: 0 … 1 is stable; LiteralForce: a spring rate in 1/s²).</summary>
     public float Alpha { get; set; } = 1f;
     /// <summary>Pull towards the head-space rest pose (0 = off, as in the source); holds styled bangs in place.</summary>
@@ -66,21 +94,29 @@ public sealed class SimulationSettings
     /// <summary>Farthest (m) the guards let any point of the hair's reach move with the head in one substep; 0 = no limit.</summary>
     public float MaxHeadTravel { get; set; } = 0.02f;
 
+    /// <summary>
+    /// Farthest gravity may move a particle in one substep, as a share of the groom's mean segment length (h²·|g| ≤ this × ℓ);
+    /// the guards add substeps to keep it (scale-free: small hair gets shorter substeps). 0 = no limit.
+    /// </summary>
+    public float MaxFallPerSubstep { get; set; } = 0.05f;
+
     public SimulationSettings Clone() => (SimulationSettings)MemberwiseClone();
 
     /// <summary>Copies every setting into target without allocating (the pipeline's per-frame guarded copy).</summary>
     public void CopyTo(SimulationSettings target)
     {
-        target.Gravity = Gravity; target.Alpha = Alpha; target.GlobalShapeStiffness = GlobalShapeStiffness; target.Mode = Mode;
+        target.Gravity = Gravity; target.Bend = Bend; target.Sag = Sag; target.BendDamping = BendDamping; target.Alpha = Alpha; target.GlobalShapeStiffness = GlobalShapeStiffness; target.Mode = Mode;
         target.Damping = Damping; target.Substeps = Substeps; target.Length = Length; target.LengthIterations = LengthIterations;
         target.LengthDamping = LengthDamping; target.ContactSlide = ContactSlide; target.MaxSpeed = MaxSpeed;
         target.TeleportDistance = TeleportDistance; target.TeleportAngle = TeleportAngle; target.Path = Path;
-        target.Guards = Guards; target.MaxSubstep = MaxSubstep; target.MaxHeadTravel = MaxHeadTravel;
+        target.Guards = Guards; target.MaxSubstep = MaxSubstep; target.MaxHeadTravel = MaxHeadTravel; target.MaxFallPerSubstep = MaxFallPerSubstep;
     }
 
     public void Validate()
     {
         Finite(Gravity.X, "Gravity"); Finite(Gravity.Y, "Gravity"); Finite(Gravity.Z, "Gravity");
+        Range(Sag, 0f, 100f, nameof(Sag));
+        Range(BendDamping, 0f, 100f, nameof(BendDamping));
         Range(Alpha, 0f, 1000f, nameof(Alpha));
         Range(GlobalShapeStiffness, 0f, 1f, nameof(GlobalShapeStiffness));
         Range(Damping, 0f, 1000f, nameof(Damping));
@@ -93,6 +129,8 @@ public sealed class SimulationSettings
         Range(TeleportAngle, 0f, MathF.PI, nameof(TeleportAngle));
         Range(MaxSubstep, 0f, 1f, nameof(MaxSubstep));
         Range(MaxHeadTravel, 0f, 10f, nameof(MaxHeadTravel));
+        Range(MaxFallPerSubstep, 0f, 100f, nameof(MaxFallPerSubstep));
+        if (!Enum.IsDefined(Bend)) throw new ArgumentOutOfRangeException(nameof(Bend));
         if (!Enum.IsDefined(Mode)) throw new ArgumentOutOfRangeException(nameof(Mode));
         if (!Enum.IsDefined(Length)) throw new ArgumentOutOfRangeException(nameof(Length));
         if (!Enum.IsDefined(Path)) throw new ArgumentOutOfRangeException(nameof(Path));

@@ -11,6 +11,9 @@ namespace HairSim;
 /// - Substeps are raised on frames where the head moves fast, so the pins and the head collider move at most
 ///   MaxHeadTravel per substep: a head that sweeps deep into the hair in one substep pushes particles out by more
 ///   than an edge length and tears the strand (the "near teleport" row of the map).
+/// - Substeps are raised so gravity moves a particle at most MaxFallPerSubstep × the groom's mean segment length in
+///   one substep (h²·|g| ≤ f·ℓ): the scale-free form of the substep limit. Hair of a 1 cm doll moves √25 times faster
+///   than a person's (Froude scaling), so it needs shorter substeps to look the same; a 10 m creature needs no more.
 /// Never more than 256 substeps (the settings' own limit).
 /// </summary>
 public static class StabilityGuards
@@ -19,19 +22,40 @@ public static class StabilityGuards
 
     /// <summary>Writes the guarded settings for a frame of length dt in which the head origin moves <paramref name="headTranslation"/> metres and turns <paramref name="headAngle"/> radians.</summary>
     /// <param name="reach">Farthest distance (m) of any hair particle from the head origin: a turn of θ moves it θ·reach.</param>
-    public static void Apply(SimulationSettings requested, SimulationSettings effective, float dt, float headTranslation, float headAngle, bool teleported, float reach)
+    /// <param name="segment">The groom's mean rest segment length (m), for the fall limit; 0 = no fall limit.</param>
+    public static void Apply(SimulationSettings requested, SimulationSettings effective, float dt, float headTranslation, float headAngle, bool teleported, float reach, float segment = 0f)
     {
         requested.CopyTo(effective);
+        // α is the source's triple stiffness: no other bend model has triples (a global shape pull may still run).
+        if (requested.Bend != BendModel.SourceTriples) effective.Alpha = 0f;
         if (!requested.Guards) return;
         if (requested.Mode == ShapeMatchMode.Muller && requested.Alpha > 1f) effective.Alpha = 1f;
         double substeps = requested.Substeps;
         if (requested.MaxSubstep > 0f) substeps = Math.Max(substeps, Math.Ceiling(dt / requested.MaxSubstep - 1e-4));
+        double g = requested.Gravity.Length();
+        if (requested.MaxFallPerSubstep > 0f && segment > 0f && g > 0)
+        {
+            double longest = Math.Sqrt(requested.MaxFallPerSubstep * segment / g);
+            substeps = Math.Max(substeps, Math.Ceiling(dt / longest - 1e-4));
+        }
         if (requested.MaxHeadTravel > 0f && !teleported)
         {
             double travel = headTranslation + (double)headAngle * reach;
             substeps = Math.Max(substeps, Math.Ceiling(travel / requested.MaxHeadTravel));
         }
         effective.Substeps = (int)Math.Min(MaxSubsteps, substeps);
+    }
+
+    /// <summary>The mean rest length of the live segments of every strand (0 for a world without any).</summary>
+    public static float MeanSegment(HairWorld world)
+    {
+        double sum = 0; long count = 0;
+        for (int s = 0; s < world.StrandCount; s++)
+        {
+            int first = world.StrandFirst[s];
+            for (int k = 1; k < world.StrandParticleCount[s]; k++) { sum += world.RestLength[first + k]; count++; }
+        }
+        return count == 0 ? 0f : (float)(sum / count);
     }
 
     /// <summary>The hair's reach: the largest distance of a rest-pose particle from the head origin.</summary>

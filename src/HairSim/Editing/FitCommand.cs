@@ -17,6 +17,8 @@ public sealed class FitOptions
 /// Stroke shorter than the key curve: the curve continues straight along the stroke's last direction.
 /// Stroke that doubles back: followed as drawn (the hair folds back); lengths are still kept.
 /// Strands of different lengths: each follows the key curve for its own length from the root.
+/// A fitted shape that would enter one of the scene's colliders (a curl drawn into the forehead) is pushed out of
+/// it, lengths kept: the bend model holds the rest shape, and one inside the head would be fought by collision forever.
 /// </summary>
 public sealed class FitCommand : EditCommand
 {
@@ -94,6 +96,8 @@ public sealed class FitCommand : EditCommand
         // Each strand: offsets in the key frame → the same offsets in the target frame, then lengths restored.
         int total = 0;
         foreach (int s in strands) total += w.StrandParticleCount[s];
+        var colliders = new Collider[scene.Colliders.Count];
+        for (int c = 0; c < colliders.Length; c++) colliders[c] = scene.Colliders[c].ToWorld(w.Head);
         var positions = new Vector3[total];
         int o0 = 0;
         foreach (int s in strands)
@@ -112,6 +116,7 @@ public sealed class FitCommand : EditCommand
                 positions[o0 + k] = tp + ot * tt + on * tn + ob * tb;
             }
             RestoreLengths(w, s, pts, positions.AsSpan(o0, n));
+            KeepOutside(w, s, colliders, positions.AsSpan(o0, n));
             for (int k = 0; k < n; k++)
             {
                 var p = positions[o0 + k];
@@ -158,6 +163,37 @@ public sealed class FitCommand : EditCommand
                 if (!(len > 1e-9f)) { d = -Vector3.UnitY; len = 1f; }
             }
             p[k] = p[k - 1] + d * (w.RestLength[i] / len);
+        }
+    }
+
+    /// <summary>
+    /// Root to tip: a free particle inside a collider goes just outside its surface, then back to its rest length from the
+    /// previous particle along the new direction (a few rounds, so the length step cannot leave it deep inside).
+    /// </summary>
+    private static void KeepOutside(HairWorld w, int s, Collider[] colliders, Span<Vector3> p)
+    {
+        if (colliders.Length == 0) return;
+        int first = w.StrandFirst[s];
+        for (int k = 1; k < p.Length; k++)
+        {
+            int i = first + k;
+            if (w.InvMass[i] == 0f) continue;
+            float lift = 0.1f * w.RestLength[i];
+            // Back to the rest length from the previous particle first (it may have been pushed out itself).
+            var e = p[k] - p[k - 1];
+            float el = e.Length();
+            if (el > 1e-9f) p[k] = p[k - 1] + e * (w.RestLength[i] / el);
+            for (int round = 0; round < 8; round++)
+            {
+                bool moved = false;
+                foreach (var c in colliders)
+                    if (c.Resolve(p[k], out var surface, out var normal, out _)) { p[k] = surface + normal * lift; moved = true; }
+                if (!moved) break;
+                var d = p[k] - p[k - 1];
+                float len = d.Length();
+                if (!(len > 1e-9f)) break;
+                p[k] = p[k - 1] + d * (w.RestLength[i] / len);
+            }
         }
     }
 

@@ -32,7 +32,7 @@ public sealed partial class FastLengthSystem : IStrandChunkSystem
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         var st = ctx.Settings;
-        if (st.Length == LengthMode.None) return true;
+        if (st.Length == LengthMode.None || LengthSystem.FusedIntoBend(st)) return true;
         FollowTheLeader16(scene.World, chunk.Tile, chunk.Firsts, StrandChunk.Rows, ctx.H, st.LengthDamping, in _chunkHeads[substep]);
         for (int f = 0; f < 3; f++)
         {

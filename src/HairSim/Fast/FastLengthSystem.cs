@@ -47,7 +47,7 @@ public sealed partial class FastLengthSystem : IHairSystem
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
         var st = ctx.Settings;
-        if (st.Length == LengthMode.None) return;
+        if (st.Length == LengthMode.None || LengthSystem.FusedIntoBend(st)) return;
         var w = scene.World;
         int lanes = _lanes, width = Vector<float>.Count;
         // The tile is a StrandScratch whose "capacity" is rows × lanes.

@@ -8,21 +8,25 @@ namespace HairSim.IO;
 /// shape, cut lengths, positions, velocities), so a round trip is bit-exact. Binary, little-endian:
 /// <code>
 /// "HAIRSTYL" | u32 version | u32 flags (0) | u64 payload length | payload | u32 CRC-32 of everything before it
-/// payload: settings (64 B) | render (8 B) | head (28 B) | colliders (4 + 56·n B) |
+/// payload: settings (64 B; version 2 adds the bend model, Sag and bend damping: 76 B) | render (8 B) | head (28 B) | colliders (4 + 56·n B) |
 ///          sheets, strands per sheet, strands, capacities, live counts | 15 float buffers × particles
 /// </code>
 /// Loading checks size caps, the checksum, the version and every count against the bytes that remain before
 /// allocating, and every value's range; anything wrong is an <see cref="InvalidDataException"/> with a clear message.
+/// Version 1 files (before the bend models) load with <see cref="BendModel.SourceTriples"/>, the model they were made with.
 /// </summary>
 public static class HairstyleFile
 {
-    public const int Version = 1;
+    public const int Version = 2;
+    /// <summary>The oldest version this build still reads.</summary>
+    public const int OldestVersion = 1;
+    private const int SettingsBytes = 76;
     public const int MaxColliders = 256;
     public const int HeaderBytes = 24;
     private const int BufferCount = 15;
     private static ReadOnlySpan<byte> Magic => "HAIRSTYL"u8;
     /// <summary>Largest file accepted: a full world at the particle limit plus its layout.</summary>
-    public static readonly long MaxFileBytes = HeaderBytes + 4 + 64 + 8 + 28 + 4 + 56L * MaxColliders +
+    public static readonly long MaxFileBytes = HeaderBytes + 4 + SettingsBytes + 8 + 28 + 4 + 56L * MaxColliders +
         8 + 4L * HairWorld.MaxParticles / 2 * 3 + 4L * BufferCount * HairWorld.MaxParticles;
 
     // ---------------- save ----------------
@@ -49,6 +53,7 @@ public static class HairstyleFile
         o.Float(st.Alpha); o.Float(st.GlobalShapeStiffness); o.Float(st.Damping); o.Float(st.LengthDamping);
         o.Float(st.ContactSlide); o.Float(st.MaxSpeed); o.Float(st.TeleportDistance); o.Float(st.TeleportAngle);
         o.Int((int)st.Mode); o.Int(st.Substeps); o.Int((int)st.Length); o.Int(st.LengthIterations); o.Int((int)st.Path);
+        o.Int((int)st.Bend); o.Float(st.Sag); o.Float(st.BendDamping);
 
         o.Int(scene.Render != null ? 1 : 0); o.Int(scene.Render?.StrandsPerGap ?? 0);
         o.Vec(w.Head.Position); o.Quat(w.Head.Rotation);
@@ -74,7 +79,7 @@ public static class HairstyleFile
     private static long PayloadLength(HairScene scene)
     {
         var w = scene.World;
-        return 64 + 8 + 28 + 4 + 56L * scene.Colliders.Count + 4 + 4L * w.SheetCount + 4 + 8L * w.StrandCount + 4L * BufferCount * w.ParticleCount;
+        return SettingsBytes + 8 + 28 + 4 + 56L * scene.Colliders.Count + 4 + 4L * w.SheetCount + 4 + 8L * w.StrandCount + 4L * BufferCount * w.ParticleCount;
     }
 
     // ---------------- load ----------------
@@ -110,7 +115,8 @@ public static class HairstyleFile
         if (data.Length < HeaderBytes + 4) throw new InvalidDataException($"Not a hairstyle file: {data.Length} bytes is shorter than the header.");
         if (!data[..8].SequenceEqual(Magic)) throw new InvalidDataException("Not a hairstyle file: the magic bytes 'HAIRSTYL' are missing.");
         int version = BinaryPrimitives.ReadInt32LittleEndian(data[8..]);
-        if (version != Version) throw new InvalidDataException($"Unsupported hairstyle file version {version}; this build reads version {Version}.");
+        if (version < OldestVersion || version > Version)
+            throw new InvalidDataException($"Unsupported hairstyle file version {version}; this build reads versions {OldestVersion} … {Version}.");
         long payload = BinaryPrimitives.ReadInt64LittleEndian(data[16..]);
         if (payload < 0 || payload != data.Length - HeaderBytes - 4L)
             throw new InvalidDataException($"The hairstyle file is truncated or has trailing bytes: the header announces {payload} payload bytes, the file holds {data.Length - HeaderBytes - 4}.");
@@ -119,7 +125,7 @@ public static class HairstyleFile
         if (BinaryPrimitives.ReadInt32LittleEndian(data[12..]) != 0) throw new InvalidDataException("The hairstyle file uses flags this build does not know.");
         try
         {
-            return Parse(new Reader(data[HeaderBytes..^4]));
+            return Parse(new Reader(data[HeaderBytes..^4]), version);
         }
         catch (ArgumentException e)
         {
@@ -127,7 +133,7 @@ public static class HairstyleFile
         }
     }
 
-    private static HairScene Parse(Reader r)
+    private static HairScene Parse(Reader r, int version)
     {
         var st = new SimulationSettings
         {
@@ -136,6 +142,8 @@ public static class HairstyleFile
             ContactSlide = r.Float(), MaxSpeed = r.Float(), TeleportDistance = r.Float(), TeleportAngle = r.Float(),
             Mode = (ShapeMatchMode)r.Int(), Substeps = r.Int(), Length = (LengthMode)r.Int(), LengthIterations = r.Int(), Path = (SolverPath)r.Int(),
         };
+        if (version >= 2) { st.Bend = (BendModel)r.Int(); st.Sag = r.Float(); st.BendDamping = r.Float(); }
+        else st.Bend = BendModel.SourceTriples;
         st.Validate();
         int hasRender = r.Int(), perGap = r.Int();
         if (hasRender is not (0 or 1)) throw new InvalidDataException($"Render flag must be 0 or 1, got {hasRender}.");

@@ -46,8 +46,8 @@ public static class CanonicalCases
     // ---------------- hanging strand ----------------
 
     /// <summary>
-    /// <paramref name="copies"/> independent 16-particle strands, roots pinned, starting horizontal (+x) so they
-    /// swing down; straight rest shape (the source's model).
+    /// <paramref name="copies"/> independent 16-particle strands, roots pinned, whose rest pose hangs straight down
+    /// (straight rest shape, the source's model) but which start horizontal (+x), so they swing down.
     /// </summary>
     public static HairScene HangingScene(SimulationSettings settings, int copies = 1, int particles = StrandParticles)
     {
@@ -56,8 +56,9 @@ public static class CanonicalCases
         float segment = StrandLength / (particles - 1);
         for (int s = 0; s < copies; s++)
         {
-            for (int k = 0; k < particles; k++) pts[k] = new Vector3(segment * k, 0f, 0.01f * s);
+            for (int k = 0; k < particles; k++) pts[k] = new Vector3(0f, -segment * k, 0.01f * s);
             w.SetStrand(s, pts, pinned: 1, straightRestShape: true);
+            for (int k = 0; k < particles; k++) w.SetPosition(w.StrandFirst[s] + k, new Vector3(segment * k, 0f, 0.01f * s));
         }
         return new HairScene(w, settings);
     }
@@ -112,7 +113,8 @@ public static class CanonicalCases
 
     /// <summary>
     /// A 2-particle strand (pinned root, free tip, L = 0.25 m from pivot to mass) released at 0.1 rad, with velocity damping off
-    /// so the analytic energy stays constant. The period is
+    /// so the analytic energy stays constant. Its rest pose hangs straight down. Under <see cref="BendModel.RestShape"/> the
+    /// root holds the strand's direction, so it is no free pendulum and the result is undefined (NaN). The period is
     /// the mean spacing of upward zero crossings over <paramref name="periods"/> swings; energy is compared at the first
     /// and last crossing (same phase). Without a length pass nothing holds the tip: the result is undefined (NaN).
     /// </summary>
@@ -122,9 +124,10 @@ public static class CanonicalCases
         settings.Damping = 0f; // so any energy lost is the integrator's own
         double g = settings.Gravity.Length(), d = 0, theta = PendulumAmplitude;
         double analytic = AnalyticReferences.PendulumPeriod(StrandLength, g, theta, d);
-        if (settings.Length == LengthMode.None) return new PendulumResult(double.NaN, analytic, double.NaN, double.NaN);
+        if (settings.Length == LengthMode.None || settings.Bend == BendModel.RestShape) return new PendulumResult(double.NaN, analytic, double.NaN, double.NaN);
         var w = new HairWorld(1, 1, 2);
-        w.SetStrand(0, [Vector3.Zero, new Vector3((float)(StrandLength * Math.Sin(theta)), (float)(-StrandLength * Math.Cos(theta)), 0f)], pinned: 1);
+        w.SetStrand(0, [Vector3.Zero, new Vector3(0f, -StrandLength, 0f)], pinned: 1);
+        w.SetPosition(1, new Vector3((float)(StrandLength * Math.Sin(theta)), (float)(-StrandLength * Math.Cos(theta)), 0f));
         var scene = new HairScene(w, settings);
         var sim = new HairSimulation(scene);
         float dt = 1f / hz;

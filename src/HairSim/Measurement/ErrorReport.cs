@@ -10,6 +10,7 @@ public sealed record ReportRow(
     MotionResult Shake,
     ConvergedError ShakeConverged,
     MotionResult Teleport,
+    HeldShapeResult Held,
     Timing Timing)
 {
     /// <summary>Length error of the settled hanging strand: the figure the defaults must keep under 0.5 %.</summary>
@@ -17,8 +18,9 @@ public sealed record ReportRow(
 
     /// <summary>
     /// The error the Pareto front ranks by, for hair with free tips: the worst of the relative errors of the hanging
-    /// strand (length, straightness), the shake and the teleport (peak stretch) and the pendulum period (where a
-    /// pendulum exists). Reported beside it but not ranked: the catenary (a second pin, which hair does not have and
+    /// strand (length, straightness), the shake and the teleport (peak stretch), the pendulum period (where a
+    /// pendulum exists) and the held shapes (a straight horizontal, an upward arc and a curl: farthest particle from
+    /// its rest place, share of the length; a style that does not hold is an error of a styling tool). Reported beside it but not ranked: the catenary (a second pin, which hair does not have and
     /// follow-the-leader cannot hold), the pendulum's energy loss (small next to the default damping), the converged
     /// shake. NaN if any case went non-finite.
     /// </summary>
@@ -30,12 +32,13 @@ public sealed record ReportRow(
             e = Max(e, Shake.PeakStretch);
             e = Max(e, Teleport.PeakStretch);
             if (Pendulum.Defined) e = Max(e, Pendulum.PeriodError);
+            e = Max(e, Held.WorstError);
             if (NonFinite > 0) return double.NaN;
             return e;
         }
     }
 
-    public int NonFinite => Collision.NonFinite + Shake.NonFinite + Teleport.NonFinite +
+    public int NonFinite => Collision.NonFinite + Shake.NonFinite + Teleport.NonFinite + Held.NonFinite +
         (double.IsFinite(Hanging.LengthError) ? 0 : 1) + (double.IsFinite(Catenary.ShapeError) ? 0 : 1);
 
     private static double Max(double a, double b) => double.IsNaN(a) || double.IsNaN(b) ? double.NaN : Math.Max(a, b);
@@ -47,12 +50,18 @@ public static class ErrorReport
     public const int Hz = 60;
 
     /// <summary>
-    /// Müller integration over α, substeps and length pass; the literal force over its spring rate (1/s²),
+    /// The default bend model and limp hair over substeps and length pass; the source's triple shape matching with
+    /// Müller integration over α, substeps and length pass, and with the literal force over its spring rate (1/s²),
     /// substeps and length pass. <paramref name="quick"/> keeps a handful for a fast check.
     /// </summary>
     public static List<SolverConfiguration> Configurations(bool quick)
     {
         var list = new List<SolverConfiguration>();
+        foreach (int n in quick ? [1, 4] : new[] { 1, 2, 4, 8, 16 })
+        {
+            list.Add(SolverConfiguration.RestShape(n, LengthMode.FollowTheLeader));
+            if (!quick) list.Add(SolverConfiguration.Limp(n, LengthMode.FollowTheLeader));
+        }
         float[] alphas = quick ? [1f] : [0.25f, 0.5f, 1f];
         int[] substeps = quick ? [1, 4, 16] : [1, 2, 4, 8, 16];
         (LengthMode, int)[] lengths = quick
@@ -94,6 +103,7 @@ public static class ErrorReport
                 return CanonicalCases.Shake(s, Hz).MeanTipDrop;
             })),
             CanonicalCases.Teleport(st, Hz),
+            HeldShapeCases.Worst(st, Hz),
             default);
     }
 

@@ -11,20 +11,23 @@ public sealed record LeaveOutCase(string Name, string Has, Action<HairScene> Str
     /// <summary>
     /// The cases, from a game character's hair (everything needed) down to particles on a moving head:
     /// no render strands (a server, a capture tool, or a renderer that draws only simulated strands), no collider
-    /// (hair that never reaches the head), limp hair (α = 0, no global shape), the source's stretchy scheme (no
-    /// length pass), and all of these at once.
+    /// (hair that never reaches the head), limp hair (no bending: a follow-the-leader length pass instead of the bend
+    /// sweep), limp hair that may stretch (no length pass either), and all of these at once.
     /// </summary>
     public static IReadOnlyList<LeaveOutCase> All { get; } =
     [
-        new("game character", "head collider, render strands, shape, length", _ => { }),
+        new("game character", "head collider, render strands, bend sweep with exact lengths", _ => { }),
         new("no render strands", "nothing drawn from the library's interpolation", s => s.Render = null),
         new("no collider", "nothing to slide over", s => s.ClearColliders()),
-        new("limp hair", "α = 0, no global shape stiffness", s => { s.Settings.Alpha = 0f; s.Settings.GlobalShapeStiffness = 0f; s.SettingsChanged(); }),
-        new("no length pass", "the source's scheme (LengthMode.None)", s => { s.Settings.Length = LengthMode.None; s.SettingsChanged(); }),
+        new("limp hair", "no bending (BendModel.Limp): a length pass only", s => { s.Settings.Bend = BendModel.Limp; s.SettingsChanged(); }),
+        new("no length pass", "limp and stretchy (BendModel.Limp, LengthMode.None)", s =>
+        {
+            s.Settings.Bend = BendModel.Limp; s.Settings.Length = LengthMode.None; s.SettingsChanged();
+        }),
         new("bare", "all of the above: particles on a moving head", s =>
         {
             s.Render = null; s.ClearColliders();
-            s.Settings.Alpha = 0f; s.Settings.GlobalShapeStiffness = 0f; s.Settings.Length = LengthMode.None; s.SettingsChanged();
+            s.Settings.Bend = BendModel.Limp; s.Settings.Length = LengthMode.None; s.SettingsChanged();
         }),
     ];
 

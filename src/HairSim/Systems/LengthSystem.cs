@@ -14,6 +14,13 @@ public sealed class LengthSystem : IHairSystem
 
     private readonly double[] _dx, _dy, _dz;
 
+    /// <summary>
+    /// Whether the bend sweep already puts every particle at its rest length (follow-the-leader fused in), leaving this
+    /// pass nothing to do: always under <see cref="BendModel.RestShape"/>, whose sweep is inextensible by construction
+    /// (the length mode applies to the other bend models).
+    /// </summary>
+    public static bool FusedIntoBend(SimulationSettings st) => st.Bend == BendModel.RestShape;
+
     public LengthSystem(int maxStrandCapacity)
     {
         _dx = new double[maxStrandCapacity + 1]; _dy = new double[maxStrandCapacity + 1]; _dz = new double[maxStrandCapacity + 1];
@@ -23,6 +30,7 @@ public sealed class LengthSystem : IHairSystem
     {
         var w = scene.World;
         var st = ctx.Settings;
+        if (LengthSystem.FusedIntoBend(st)) return;
         double h = ctx.H;
         for (int s = begin; s < end; s++)
         {

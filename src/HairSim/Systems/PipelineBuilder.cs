@@ -2,12 +2,12 @@ namespace HairSim;
 
 /// <summary>
 /// Builds a scene's pipeline from registered system factories, keeping only the systems whose data the
-/// scene has. Order: head follow, shape match, integrate, length, collide (substeps), then interpolation.
+/// scene has. Order: head follow, shape match, integrate, bend, length, collide (substeps), then interpolation.
 /// Other libraries (editing tools, wind, …) add their factories with <see cref="Add"/>.
 /// </summary>
 public sealed class PipelineBuilder
 {
-    public const int OrderHeadFollow = 100, OrderShapeMatch = 200, OrderIntegrate = 300, OrderLength = 400,
+    public const int OrderHeadFollow = 100, OrderShapeMatch = 200, OrderIntegrate = 300, OrderBend = 350, OrderLength = 400,
         OrderCollide = 500, OrderInterpolate = 1000;
 
     private readonly List<SystemFactory> _factories = new();
@@ -44,12 +44,16 @@ public sealed class PipelineBuilder
         b.Add(new SystemFactory(HeadFollowSystem.SystemName, SystemPhase.Substep, OrderHeadFollow,
             s => s.World.StrandCount > 0, _ => new HeadFollowSystem()));
         b.Add(new SystemFactory(ShapeMatchSystem.SystemName, SystemPhase.Substep, OrderShapeMatch,
-            s => (s.Settings.Alpha > 0f && s.World.MaxStrandCapacity >= 3) || s.Settings.GlobalShapeStiffness > 0f,
+            s => (s.Settings.Bend == BendModel.SourceTriples && s.Settings.Alpha > 0f && s.World.MaxStrandCapacity >= 3) || s.Settings.GlobalShapeStiffness > 0f,
             s => new ShapeMatchSystem(s.World.MaxStrandCapacity)));
         b.Add(new SystemFactory(IntegrateSystem.SystemName, SystemPhase.Substep, OrderIntegrate,
             s => s.World.StrandCount > 0, _ => new IntegrateSystem()));
+        b.Add(new SystemFactory(BendSystem.SystemName, SystemPhase.Substep, OrderBend,
+            s => s.Settings.Bend == BendModel.RestShape, s => new BendSystem(s.World)));
+        // The bend sweep places particles at their rest lengths itself (follow-the-leader fused in).
         b.Add(new SystemFactory(LengthSystem.SystemName, SystemPhase.Substep, OrderLength,
-            s => s.Settings.Length != LengthMode.None, s => new LengthSystem(s.World.MaxStrandCapacity)));
+            s => s.Settings.Length != LengthMode.None && !LengthSystem.FusedIntoBend(s.Settings),
+            s => new LengthSystem(s.World.MaxStrandCapacity)));
         b.Add(new SystemFactory(CollideSystem.SystemName, SystemPhase.Substep, OrderCollide,
             s => s.Colliders.Count > 0, _ => new CollideSystem()));
         b.Add(new SystemFactory(InterpolateSystem.SystemName, SystemPhase.FrameEnd, OrderInterpolate,

@@ -13,7 +13,7 @@ public class GroomBuilderTests
         Assert.Equal(435 * 40, w.StrandCount);
         Assert.Equal(435 * 40 * 16, w.ParticleCount);
         Assert.Equal(0, w.CountNonFinite());
-        // Roots sit on the scalp (just outside the ellipsoid), strands start straight with the requested length.
+        // Roots sit on the scalp (just outside the ellipsoid), every segment has its rest length, no particle is inside the head.
         var head = Collider.Ellipsoid(g.HeadCenter, g.HeadRadii);
         for (int s = 0; s < w.StrandCount; s += 97)
         {
@@ -21,10 +21,36 @@ public class GroomBuilderTests
             Assert.Equal(0f, head.Penetration(root));
             var l = root / g.HeadRadii;
             Assert.InRange(l.Length(), 1f, 1.05f);
-            Assert.Equal(g.StrandLength, Vector3.Distance(root, w.GetPosition(w.TipIndex(s))), 4);
-            Assert.True(GroomBuilder.OnScalp(g, Vector3.Normalize(root / g.HeadRadii)) || true);
+            for (int k = 1; k < g.ParticlesPerStrand; k++)
+            {
+                int i = w.StrandFirst[s] + k;
+                Assert.Equal(w.RestLength[i], Vector3.Distance(w.GetPosition(i), w.GetPosition(i - 1)), 5);
+                Assert.Equal(0f, head.Penetration(w.GetPosition(i)));
+            }
         }
         Assert.Equal(g.StrandLength * w.StrandCount, w.TotalRestLength(), 0);
+    }
+
+    [Fact]
+    public void DrapedGroomFallsAndUndrapedStandsOutAlongTheNormal()
+    {
+        var g = TestWorlds.SmallGroom();
+        var flat = g.Clone(); flat.Drape = 0f;
+        var draped = GroomBuilder.Build(g);
+        var straight = GroomBuilder.Build(flat);
+        int falling = 0;
+        for (int s = 0; s < draped.StrandCount; s++)
+        {
+            var root = draped.GetPosition(draped.RootIndex(s));
+            var tip = draped.GetPosition(draped.TipIndex(s));
+            // Combed down: every tip ends lower than its root, most by more than half the length.
+            Assert.True(tip.Y < root.Y, $"strand {s}: the tip is not below the root");
+            if (root.Y - tip.Y > 0.5f * g.StrandLength) falling++;
+            // Drape 0: the source's groom, a straight line along the normal of the full length.
+            var r0 = straight.GetPosition(straight.RootIndex(s));
+            Assert.Equal(g.StrandLength, Vector3.Distance(r0, straight.GetPosition(straight.TipIndex(s))), 4);
+        }
+        Assert.True(falling > draped.StrandCount / 2, $"only {falling} of {draped.StrandCount} strands fall more than half their length");
     }
 
     [Fact]

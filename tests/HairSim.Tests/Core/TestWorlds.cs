@@ -16,9 +16,13 @@ internal static class TestWorlds
         return w;
     }
 
+    /// <summary>
+    /// Reference-path settings for the core systems' tests, on the source's scheme (triple shape matching, follow-the-
+    /// leader): the tests of the default bend model (BendModel.RestShape) build their own settings.
+    /// </summary>
     public static SimulationSettings Settings(Action<SimulationSettings>? change = null)
     {
-        var s = new SimulationSettings { Path = SolverPath.Reference };
+        var s = new SimulationSettings { Path = SolverPath.Reference, Bend = BendModel.SourceTriples };
         change?.Invoke(s);
         return s;
     }

@@ -16,7 +16,7 @@ public sealed class FileTests : IDisposable
     /// <summary>A small styled scene: cut, head moved, extra colliders, non-default settings, render on.</summary>
     private static HairScene Styled()
     {
-        var settings = new SimulationSettings { Alpha = 0.7f, GlobalShapeStiffness = 0.04f, Substeps = 3, Length = LengthMode.Pbd, Mode = ShapeMatchMode.LiteralForce, Gravity = new Vector3(0.1f, -9f, 0.2f) };
+        var settings = new SimulationSettings { Bend = BendModel.SourceTriples, Sag = 0.2f, BendDamping = 0.7f, Alpha = 0.7f, GlobalShapeStiffness = 0.04f, Substeps = 3, Length = LengthMode.Pbd, Mode = ShapeMatchMode.LiteralForce, Gravity = new Vector3(0.1f, -9f, 0.2f) };
         var scene = GroomBuilder.BuildScene(new GroomSettings { SheetCount = 5, StrandsPerSheet = 3, ParticlesPerStrand = 6 }, settings);
         scene.AddCollider(Collider.Sphere(new Vector3(0, -0.1f, 0.05f), 0.04f));
         scene.AddCollider(Collider.Capsule(new Vector3(0, -0.15f, 0), new Vector3(0, -0.3f, 0), 0.05f));
@@ -38,6 +38,31 @@ public sealed class FileTests : IDisposable
     private static void FixCrc(byte[] data) => BinaryPrimitives.WriteUInt32LittleEndian(data.AsSpan(data.Length - 4), Crc32.Compute(data.AsSpan(0, data.Length - 4)));
 
     [Fact]
+    public void VersionOneFilesLoadWithTheSourcesScheme()
+    {
+        // A version 1 file is a version 2 file without the 12 bytes of bend settings that end the settings block.
+        var scene = Styled();
+        scene.Settings.Bend = BendModel.RestShape;
+        var v2 = Bytes(scene);
+        const int settingsEnd = HairstyleFile.HeaderBytes + 64;
+        var v1 = new byte[v2.Length - 12];
+        v2.AsSpan(0, settingsEnd).CopyTo(v1);
+        v2.AsSpan(settingsEnd + 12).CopyTo(v1.AsSpan(settingsEnd));
+        BinaryPrimitives.WriteInt32LittleEndian(v1.AsSpan(8), 1);
+        BinaryPrimitives.WriteInt64LittleEndian(v1.AsSpan(16), v1.Length - HairstyleFile.HeaderBytes - 4L);
+        FixCrc(v1);
+        var loaded = HairstyleFile.Load(v1);
+        Assert.Equal(BendModel.SourceTriples, loaded.Settings.Bend);
+        Assert.True(loaded.World.BitEquals(scene.World));
+        Assert.Equal(BendModel.RestShape, HairstyleFile.Load(v2).Settings.Bend);
+        // Versions this build does not know are refused with the range it reads.
+        BinaryPrimitives.WriteInt32LittleEndian(v1.AsSpan(8), 3);
+        FixCrc(v1);
+        var e = Assert.Throws<InvalidDataException>(() => HairstyleFile.Load(v1));
+        Assert.Contains("versions 1 … 2", e.Message);
+    }
+
+    [Fact]
     public void RoundTripIsExact()
     {
         var scene = Styled();
@@ -51,6 +76,7 @@ public sealed class FileTests : IDisposable
                      (b.Gravity, b.Alpha, b.GlobalShapeStiffness, b.Mode, b.Damping, b.Substeps, b.Length, b.LengthIterations));
         Assert.Equal((a.LengthDamping, a.ContactSlide, a.MaxSpeed, a.TeleportDistance, a.TeleportAngle, a.Path),
                      (b.LengthDamping, b.ContactSlide, b.MaxSpeed, b.TeleportDistance, b.TeleportAngle, b.Path));
+        Assert.Equal((a.Bend, a.Sag, a.BendDamping), (b.Bend, b.Sag, b.BendDamping));
         Assert.Equal(scene.Colliders.Count, loaded.Colliders.Count);
         for (int c = 0; c < scene.Colliders.Count; c++)
         {
@@ -74,10 +100,10 @@ public sealed class FileTests : IDisposable
             var e = Assert.Throws<InvalidDataException>(() => HairstyleFile.Load(data.AsSpan(0, n)));
             Assert.False(string.IsNullOrWhiteSpace(e.Message));
         }
-        var v2 = (byte[])data.Clone();
-        BinaryPrimitives.WriteInt32LittleEndian(v2.AsSpan(8), 2);
-        FixCrc(v2);
-        Assert.Contains("version 2", Assert.Throws<InvalidDataException>(() => HairstyleFile.Load(v2)).Message);
+        var unknown = (byte[])data.Clone();
+        BinaryPrimitives.WriteInt32LittleEndian(unknown.AsSpan(8), 9);
+        FixCrc(unknown);
+        Assert.Contains("version 9", Assert.Throws<InvalidDataException>(() => HairstyleFile.Load(unknown)).Message);
         var flipped = (byte[])data.Clone();
         flipped[data.Length / 2] ^= 0x10;
         Assert.Contains("checksum", Assert.Throws<InvalidDataException>(() => HairstyleFile.Load(flipped)).Message);
@@ -114,8 +140,8 @@ public sealed class FileTests : IDisposable
     public void HostileSizesAreRefusedBeforeAllocating()
     {
         var data = Bytes(Styled());
-        // Payload offsets: settings 64, render 8, head 28, colliders 4 + 56·3, then the sheet count.
-        int sheetAt = 24 + 64 + 8 + 28 + 4 + 56 * 3;
+        // Payload offsets: settings 76, render 8, head 28, colliders 4 + 56·3, then the sheet count.
+        int sheetAt = 24 + 76 + 8 + 28 + 4 + 56 * 3;
         Assert.Equal(5, BinaryPrimitives.ReadInt32LittleEndian(data.AsSpan(sheetAt)));
         foreach (int evil in new[] { int.MaxValue, 1 << 28, -1, 0 })
         {

@@ -21,6 +21,9 @@ public class FastAllocationTests
     [InlineData("pbd")]
     [InlineData("all-colliders")]
     [InlineData("cut", true)]
+    [InlineData("rest")]
+    [InlineData("rest-cut")]
+    [InlineData("rest-odd-lengths")]
     public void SequentialStepAllocatesNothing(string scene, bool render = false)
     {
         var s = FastPathScenes.Build(scene, SolverPath.Fast);
@@ -37,6 +40,8 @@ public class FastAllocationTests
     [InlineData("cut", false)]
     [InlineData("bent", false)]
     [InlineData("cut", true)]
+    [InlineData("rest", false)]
+    [InlineData("rest-bent", true)]
     public void ParallelStepAllocatesNothingOnAnyThread(string scene, bool render)
     {
         var s = FastPathScenes.Build(scene, SolverPath.Fast);

@@ -11,7 +11,7 @@ namespace HairSim.Tests.Fast;
 /// </summary>
 public class FastDegenerateCaseTests(ITestOutputHelper output)
 {
-    private static HairScene Build(SolverPath path, LengthMode length, float globalShape)
+    private static HairScene Build(SolverPath path, LengthMode length, float globalShape, BendModel bend)
     {
         var w = new HairWorld(2, 8, 16);
         for (int s = 0; s < w.StrandCount; s++)
@@ -29,7 +29,7 @@ public class FastDegenerateCaseTests(ITestOutputHelper output)
         // Strand 3 (bent rest shape): the same, in a bent strand.
         int f3 = w.StrandFirst[3];
         w.SetPosition(f3 + 11, w.GetPosition(f3 + 9));
-        var st = new SimulationSettings { Path = path, Substeps = 1, Length = length, GlobalShapeStiffness = globalShape };
+        var st = new SimulationSettings { Path = path, Substeps = 1, Length = length, GlobalShapeStiffness = globalShape, Bend = bend };
         var scene = new HairScene(w, st);
         // Particle 8 of strands 4, 5 and 6 sits exactly at a sphere centre, on a capsule axis, at an ellipsoid centre.
         var p4 = w.GetPosition(w.StrandFirst[4] + 8);
@@ -50,13 +50,18 @@ public class FastDegenerateCaseTests(ITestOutputHelper output)
     [InlineData("frame", LengthMode.FollowTheLeader, 0.02f)]
     [InlineData("frame", LengthMode.FollowTheLeader, 0f)]
     [InlineData("frame", LengthMode.Pbd, 0.02f)]
+    // The default bend model: the sweep's own fallbacks (zero-length segment, target along the rest direction).
+    [InlineData(BendSystem.SystemName, LengthMode.FollowTheLeader, 0f)]
+    [InlineData("frame-rest", LengthMode.FollowTheLeader, 0.02f)]
+    [InlineData("frame-rest", LengthMode.FollowTheLeader, 0f)]
     public void FallbacksMatchReference(string system, LengthMode length, float globalShape)
     {
-        var reference = Build(SolverPath.Reference, length, globalShape);
-        var fast = Build(SolverPath.Fast, length, globalShape);
+        var bend = system is BendSystem.SystemName or "frame-rest" ? BendModel.RestShape : BendModel.SourceTriples;
+        var reference = Build(SolverPath.Reference, length, globalShape, bend);
+        var fast = Build(SolverPath.Fast, length, globalShape, bend);
         var before = reference.World.Clone();
         var builder = PipelineBuilder.CreateDefault();
-        if (system != "frame")
+        if (system is not ("frame" or "frame-rest"))
         {
             builder = new PipelineBuilder();
             foreach (var f in PipelineBuilder.CreateDefault().Factories) if (f.Name == system) builder.Add(f);
@@ -75,6 +80,6 @@ public class FastDegenerateCaseTests(ITestOutputHelper output)
         // A fallback that was skipped or taken differently changes a particle by millimetres / metres per second.
         Assert.True(dx <= 1e-6f, $"positions differ by {dx:E3} m");
         Assert.True(dv <= 1e-5f * MathF.Max(1f, vmax) + 5e-4f, $"velocities differ by {dv:E3} m/s");
-        if (system is CollideSystem.SystemName or LengthSystem.SystemName) Assert.True(moved > 1e-3f, "the degenerate particles were moved");
+        if (system is CollideSystem.SystemName or LengthSystem.SystemName or BendSystem.SystemName) Assert.True(moved > 1e-3f, "the degenerate particles were moved");
     }
 }

@@ -16,6 +16,9 @@ public class FastDeterminismTests
     [InlineData("odd-lengths", 2)]
     [InlineData("pbd", 2)]
     [InlineData("all-colliders", 4)]
+    [InlineData("rest", 2)]
+    [InlineData("rest-cut", 3)]
+    [InlineData("rest-odd-lengths", 2)]
     public void ParallelGivesTheSameBitsAsSequential(string scene, int threads)
     {
         var sequential = FastPathScenes.Build(scene, SolverPath.Fast);

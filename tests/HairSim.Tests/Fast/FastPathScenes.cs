@@ -11,15 +11,27 @@ internal static class FastPathScenes
         "straight", "cut", "bent", "short8", "odd-lengths", "sphere", "capsule", "rotated-ellipsoid", "all-colliders",
         "literal", "length-none", "pbd", "global-shape", "speed-limit", "one-pin", "no-colliders",
         "cut-mixed",
+        // The default bend model (BendModel.RestShape), on the draped groom, cut, styled, odd lengths and other length modes.
+        "rest", "rest-cut", "rest-bent", "rest-odd-lengths", "rest-soft", "rest-speed-limit", "rest-all-colliders", "limp",
     ];
 
-    /// <summary>A small groom on the reference head with default settings, changed per case.</summary>
+    /// <summary>Scenes of the default bend model (the others run the source's triple shape matching).</summary>
+    public static bool IsRestShape(string name) => name.StartsWith("rest", StringComparison.Ordinal);
+
+    /// <summary>
+    /// A small groom on the reference head, changed per case. The original cases run the source's scheme
+    /// (BendModel.SourceTriples, whose systems have strand-chunk and 16-lane kernels); "rest…" cases the default
+    /// bend model with default settings, and "limp" no bending at all.
+    /// </summary>
     public static HairScene Build(string name, SolverPath path)
     {
         var g = new GroomSettings { SheetCount = 24, StrandsPerSheet = 6, ParticlesPerStrand = 16 };
-        var st = new SimulationSettings { Path = path };
+        var st = new SimulationSettings { Path = path, Bend = IsRestShape(name) ? BendModel.RestShape : BendModel.SourceTriples };
+        if (IsRestShape(name) && name != "rest") name = name.Substring("rest-".Length);
         switch (name)
         {
+            case "soft": st.Sag = 0.3f; st.BendDamping = 0.1f; break;
+            case "limp": st.Bend = BendModel.Limp; break;
             case "short8": g.ParticlesPerStrand = 8; break;
             case "literal": st.Mode = ShapeMatchMode.LiteralForce; st.Alpha = 400f; break;
             case "length-none": st.Length = LengthMode.None; break;

@@ -28,7 +28,8 @@ public class StrandChunkTests(ITestOutputHelper output)
             var simC = new HairSimulation(chunked, dispatcher: dispatcher);
             var simP = new HairSimulation(plain, dispatcher: dispatcher);
             simP.Pipeline.UseStrandChunks = false;
-            Assert.Equal(ChunksExpected, simC.Pipeline.UsesStrandChunks);
+            // The bend sweep has no chunk kernel yet: the default model steps system by system.
+            Assert.Equal(ChunksExpected && !FastPathScenes.IsRestShape(scene), simC.Pipeline.UsesStrandChunks);
             Assert.False(simP.Pipeline.UsesStrandChunks);
             int stepped = 0;
             for (int f = 1; f <= 12; f++)

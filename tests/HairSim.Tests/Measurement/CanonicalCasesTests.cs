@@ -7,7 +7,7 @@ public class CanonicalCasesTests
 {
     private static SimulationSettings Config(ShapeMatchMode mode, float alpha, int substeps, LengthMode length, int iterations = 4)
     {
-        var s = new SolverConfiguration(mode, alpha, substeps, length, iterations).ToSettings(null, SolverPath.Reference);
+        var s = new SolverConfiguration(mode, alpha, substeps, length, iterations, BendModel.SourceTriples).ToSettings(null, SolverPath.Reference);
         s.Guards = false;
         return s;
     }

@@ -32,7 +32,7 @@ public class DefaultsOnFrontTests
         s.Guards = false; // as the report: exactly this configuration
         var row = new ReportRow(c, CanonicalCases.Hanging(s, ErrorReport.Hz), default,
             CanonicalCases.Pendulum(s, ErrorReport.Hz), default, CanonicalCases.Shake(s, ErrorReport.Hz), default,
-            CanonicalCases.Teleport(s, ErrorReport.Hz), default);
+            CanonicalCases.Teleport(s, ErrorReport.Hz), HeldShapeCases.Worst(s, ErrorReport.Hz), default);
         return row.Error;
     }
 }

@@ -15,11 +15,39 @@ public class StabilityGuardsTests
     [Fact]
     public void MullerAlphaAboveOneIsClampedOnlyWithGuards()
     {
-        Assert.Equal(1f, Guarded(new SimulationSettings { Alpha = 3f }, 1 / 60f).Alpha);
-        Assert.Equal(3f, Guarded(new SimulationSettings { Alpha = 3f, Guards = false }, 1 / 60f).Alpha);
-        Assert.Equal(0.5f, Guarded(new SimulationSettings { Alpha = 0.5f }, 1 / 60f).Alpha);
+        const BendModel source = BendModel.SourceTriples;
+        Assert.Equal(1f, Guarded(new SimulationSettings { Bend = source, Alpha = 3f }, 1 / 60f).Alpha);
+        Assert.Equal(3f, Guarded(new SimulationSettings { Bend = source, Alpha = 3f, Guards = false }, 1 / 60f).Alpha);
+        Assert.Equal(0.5f, Guarded(new SimulationSettings { Bend = source, Alpha = 0.5f }, 1 / 60f).Alpha);
         // The literal force's α is a spring rate (1/s²), not a per-step share: not clamped.
-        Assert.Equal(500f, Guarded(new SimulationSettings { Alpha = 500f, Mode = ShapeMatchMode.LiteralForce }, 1 / 60f).Alpha);
+        Assert.Equal(500f, Guarded(new SimulationSettings { Bend = source, Alpha = 500f, Mode = ShapeMatchMode.LiteralForce }, 1 / 60f).Alpha);
+        // α belongs to the source's triples: under any other bend model no triple goal pulls, guards or not.
+        Assert.Equal(0f, Guarded(new SimulationSettings { Alpha = 0.5f }, 1 / 60f).Alpha);
+        Assert.Equal(0f, Guarded(new SimulationSettings { Bend = BendModel.Limp, Alpha = 0.5f, Guards = false }, 1 / 60f).Alpha);
+    }
+
+    [Fact]
+    public void SmallHairGetsSubstepsShortEnoughForItsSegments()
+    {
+        // Gravity may move a particle at most 5 % of the mean segment (h²·g ≤ 0.05·ℓ): a doll's 1 cm strand of 16
+        // particles (ℓ = 0.67 mm) needs h ≤ 1.84 ms, 10 substeps at 60 Hz; a person's 25 cm strand (ℓ = 16.7 mm) h ≤ 9.2 ms,
+        // which the default 4 substeps already meet; a 10 m creature needs none more.
+        var effective = new SimulationSettings();
+        float Segment(float length) => length / 15f;
+        int Substeps(float length, float dt)
+        {
+            StabilityGuards.Apply(new SimulationSettings(), effective, dt, 0f, 0f, false, length, Segment(length));
+            return effective.Substeps;
+        }
+        double g = new SimulationSettings().Gravity.Length();
+        Assert.Equal((int)Math.Ceiling((1 / 60.0) / Math.Sqrt(0.05 * Segment(0.01f) / g)), Substeps(0.01f, 1 / 60f));
+        Assert.Equal(10, Substeps(0.01f, 1 / 60f));
+        Assert.Equal(4, Substeps(0.25f, 1 / 60f));
+        Assert.Equal(4, Substeps(10f, 1 / 60f));
+        StabilityGuards.Apply(new SimulationSettings { Guards = false }, effective, 1 / 60f, 0f, 0f, false, 0.01f, Segment(0.01f));
+        Assert.Equal(4, effective.Substeps);
+        StabilityGuards.Apply(new SimulationSettings { MaxFallPerSubstep = 0f }, effective, 1 / 60f, 0f, 0f, false, 0.01f, Segment(0.01f));
+        Assert.Equal(4, effective.Substeps);
     }
 
     [Fact]
@@ -79,7 +107,7 @@ public class StabilityGuardsTests
     public void AlphaClampStopsTheSourcesSchemeFromOscillating()
     {
         // Müller α = 4 with one substep overshoots every goal: without the guard the hair never calms down.
-        var s = new SimulationSettings { Alpha = 4f, Substeps = 1, Length = LengthMode.None, MaxSubstep = 0f, Guards = false };
+        var s = new SimulationSettings { Bend = BendModel.SourceTriples, Alpha = 4f, Substeps = 1, Length = LengthMode.None, MaxSubstep = 0f, Guards = false };
         var unguarded = StabilityMap.Run(s, 1 / 60f, 16, StabilityScenario.Shake, sheets: 3);
         s.Guards = true;
         var guarded = StabilityMap.Run(s, 1 / 60f, 16, StabilityScenario.Shake, sheets: 3);
@@ -90,9 +118,10 @@ public class StabilityGuardsTests
     [Fact]
     public void HeadTravelGuardKeepsANearTeleportFromTearingTheHair()
     {
-        // At 15 Hz, with the substep-length guard off so only the head-travel guard differs.
-        var unguarded = StabilityMap.Run(new SimulationSettings { Guards = false, MaxSubstep = 0f }, 1 / 15f, 16, StabilityScenario.NearTeleport);
-        var guarded = StabilityMap.Run(new SimulationSettings { MaxSubstep = 0f }, 1 / 15f, 16, StabilityScenario.NearTeleport);
+        // At 15 Hz, with the substep-length guards off so only the head-travel guard differs; the source's scheme,
+        // whose length pass runs before collision (the default bend sweep is inextensible by itself).
+        var unguarded = StabilityMap.Run(new SimulationSettings { Bend = BendModel.SourceTriples, Guards = false, MaxSubstep = 0f, MaxFallPerSubstep = 0f }, 1 / 15f, 16, StabilityScenario.NearTeleport);
+        var guarded = StabilityMap.Run(new SimulationSettings { Bend = BendModel.SourceTriples, MaxSubstep = 0f, MaxFallPerSubstep = 0f }, 1 / 15f, 16, StabilityScenario.NearTeleport);
         Assert.True(unguarded.WorstElongation >= StabilityResult.StretchLimit, $"unguarded {unguarded.WorstElongation:P1}");
         Assert.True(guarded.Stable, $"guarded {guarded.WorstElongation:P1}, inside {guarded.MaxInside}");
     }
