@@ -52,9 +52,16 @@ public partial class HairSystem3D : Node3D
     /// <summary>The head the roots follow; empty = this node's own transform.</summary>
     [ExportGroup("Simulation")]
     [Export] public Node3D? Head { get => _head; set { _head = value; _collidersDirty = true; } }
-    /// <summary>Shape-matching α: 0 = limp, 1 = holds its rest shape.</summary>
+    /// <summary>What keeps the shape: the rest shape (styles hold), the source's triples, or nothing (limp).</summary>
+    [Export] public BendModel Bend { get => _settings.Bend; set { _settings.Bend = value; Invalidate(); } }
+    /// <summary>Tip sag of a horizontal strand under 1 g, share of its length: 0.01 holds a style, 0.1 soft, 1 nearly limp. Same look at any size and rate.</summary>
+    [Export(PropertyHint.Range, "0,1,0.001,exp")] public float Sag { get => _settings.Sag; set { _settings.Sag = value; Invalidate(); } }
+    /// <summary>Damping ratio of bending: 0 rings, 1 returns without overshoot.</summary>
+    [Export(PropertyHint.Range, "0,2,0.01")] public float BendDamping { get => _settings.BendDamping; set { _settings.BendDamping = value; Invalidate(); } }
+    /// <summary>The source's triple shape-matching α (Bend = SourceTriples only): 0 = limp, 1 = stiffest.</summary>
     [Export(PropertyHint.Range, "0,1,0.01")] public float Stiffness { get => _settings.Stiffness; set { _settings.Stiffness = value; Invalidate(); } }
-    [Export(PropertyHint.Range, "0,50,0.1,suffix:1/s")] public float Damping { get => _settings.Damping; set { _settings.Damping = value; Invalidate(); } }
+    /// <summary>Air drag per natural time √(length / 1 g): 0.32 = 2/s on 25 cm hair; the same look at any size.</summary>
+    [Export(PropertyHint.Range, "0,10,0.01")] public float Damping { get => _settings.Damping; set { _settings.Damping = value; Invalidate(); } }
     [Export(PropertyHint.Range, "1,32,1")] public int Substeps { get => _settings.Substeps; set { _settings.Substeps = value; Invalidate(); } }
     [Export] public Vector3 Gravity { get => _settings.Gravity.ToGodot(); set { _settings.Gravity = value.ToNumerics(); Invalidate(); } }
     [Export(PropertyHint.Range, "10,240,1,suffix:Hz")] public int StepsPerSecond { get => _settings.StepsPerSecond; set { _settings.StepsPerSecond = value; Invalidate(); } }

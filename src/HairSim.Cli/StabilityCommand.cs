@@ -52,6 +52,9 @@ public static class StabilityCommand
 
     private static SimulationSettings Defaults(SolverPath path) => new() { Path = path };
 
+    /// <summary>The source's triple shape matching with the other defaults (the grids over α).</summary>
+    private static SimulationSettings Source(SolverPath path) => new() { Path = path, Bend = BendModel.SourceTriples };
+
     private static readonly float[] Dts = [1 / 960f, 1 / 480f, 1 / 240f, 1 / 120f, 1 / 60f, 1 / 30f, 1 / 15f];
 
     private static List<Grid> Grids(bool quick, SolverPath path)
@@ -62,35 +65,46 @@ public static class StabilityCommand
         string[] alphaLabels = Array.ConvertAll(alphas, x => F($"α = {x:0.##}"));
         var grids = new List<Grid>();
 
-        grids.Add(new Grid("muller-alpha-dt", "Defaults (Müller, 4 substeps, follow-the-leader): α × frame time, head shake",
+        float[] sags = quick ? [0f, 0.01f, 1f] : [0f, 0.003f, 0.01f, 0.03f, 0.1f, 0.3f, 1f];
+        grids.Add(new Grid("rest-sag-dt", "Defaults (rest-shape bend model, 4 substeps, guards on): Sag × frame time, head shake",
+            "Sag", Array.ConvertAll(sags, x => F($"Sag = {x:0.###}")), "frame time dt", dtLabels, (r, c) =>
+            {
+                var s = Defaults(path); s.Sag = sags[r];
+                return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
+            }));
+        float[] scales = quick ? [0.04f, 1f, 40f] : [0.04f, 0.2f, 1f, 4f, 40f];
+        grids.Add(new Grid("rest-scale-dt", "Defaults at every size: hair length (groom and head motion scaled, Froude) × frame time, head shake",
+            "hair length", Array.ConvertAll(scales, x => F($"{25 * x:0.##} cm")), "frame time dt", dtLabels, (r, c) =>
+                StabilityMap.Run(Defaults(path), dts[c], 16, StabilityScenario.Shake, scale: scales[r])));
+        grids.Add(new Grid("muller-alpha-dt", "The source's triples with the other defaults (Müller, 4 substeps, follow-the-leader): α × frame time, head shake",
             "α", alphaLabels, "frame time dt", dtLabels, (r, c) =>
             {
-                var s = Defaults(path); s.Alpha = alphas[r];
+                var s = Source(path); s.Alpha = alphas[r];
                 return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
             }));
         grids.Add(new Grid("source-alpha-dt", "The source's scheme, faithfully (Müller, 1 substep, no length pass, guards off): α × frame time, head shake",
             "α", alphaLabels, "frame time dt", dtLabels, (r, c) =>
             {
-                var s = Defaults(path); s.Alpha = alphas[r]; s.Substeps = 1; s.Length = LengthMode.None; s.Guards = false;
+                var s = Source(path); s.Alpha = alphas[r]; s.Substeps = 1; s.Length = LengthMode.None; s.Guards = false;
                 return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
             }));
-        grids.Add(new Grid("source-guarded-alpha-dt", "The source's scheme with the guards on (α clamped to 1, substeps ≤ 1/60 s, head travel ≤ 2 cm per substep)",
+        grids.Add(new Grid("source-guarded-alpha-dt", "The source's scheme with the guards on (α clamped to 1, gravity's fall per substep ≤ 5 % of a segment, head travel ≤ 1.2 segments per substep)",
             "α", alphaLabels, "frame time dt", dtLabels, (r, c) =>
             {
-                var s = Defaults(path); s.Alpha = alphas[r]; s.Substeps = 1; s.Length = LengthMode.None;
+                var s = Source(path); s.Alpha = alphas[r]; s.Substeps = 1; s.Length = LengthMode.None;
                 return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
             }));
         float[] rates = quick ? [10f, 1000f] : [1f, 10f, 100f, 1000f];
         grids.Add(new Grid("literal-alpha-dt", "The source's literal force, faithfully (1 substep, no length pass, guards off): α (1/s²) × frame time, head shake",
             "α (1/s²)", Array.ConvertAll(rates, x => F($"α = {x:0}")), "frame time dt", dtLabels, (r, c) =>
             {
-                var s = Defaults(path); s.Mode = ShapeMatchMode.LiteralForce; s.Alpha = rates[r]; s.Substeps = 1; s.Length = LengthMode.None; s.Guards = false;
+                var s = Source(path); s.Mode = ShapeMatchMode.LiteralForce; s.Alpha = rates[r]; s.Substeps = 1; s.Length = LengthMode.None; s.Guards = false;
                 return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
             }));
         grids.Add(new Grid("literal-defaults-alpha-dt", "Literal force with the other defaults (4 substeps, follow-the-leader, guards on): α (1/s²) × frame time, head shake",
             "α (1/s²)", Array.ConvertAll(rates, x => F($"α = {x:0}")), "frame time dt", dtLabels, (r, c) =>
             {
-                var s = Defaults(path); s.Mode = ShapeMatchMode.LiteralForce; s.Alpha = rates[r];
+                var s = Source(path); s.Mode = ShapeMatchMode.LiteralForce; s.Alpha = rates[r];
                 return StabilityMap.Run(s, dts[c], 16, StabilityScenario.Shake);
             }));
         int[] particles = quick ? [2, 16, 512] : [2, 4, 8, 16, 32, 64, 128, 256, 512];
@@ -109,9 +123,9 @@ public static class StabilityCommand
             ("guards off 60 Hz", () => { var s = Defaults(path); s.Guards = false; return s; }, 1 / 60f),
             ("guards off 15 Hz", () => { var s = Defaults(path); s.Guards = false; return s; }, 1 / 15f),
             ("gravity × 100", () => { var s = Defaults(path); s.Gravity *= 100f; return s; }, 1 / 60f),
-            ("source, guards off", () => { var s = Defaults(path); s.Substeps = 1; s.Length = LengthMode.None; s.Guards = false; return s; }, 1 / 60f),
-            ("literal α=1000", () => { var s = Defaults(path); s.Mode = ShapeMatchMode.LiteralForce; s.Alpha = 1000f; return s; }, 1 / 60f),
-            ("Müller α = 4, guards off", () => { var s = Defaults(path); s.Alpha = 4f; s.Guards = false; return s; }, 1 / 60f),
+            ("source, guards off", () => { var s = Source(path); s.Substeps = 1; s.Length = LengthMode.None; s.Guards = false; return s; }, 1 / 60f),
+            ("literal α=1000", () => { var s = Source(path); s.Mode = ShapeMatchMode.LiteralForce; s.Alpha = 1000f; return s; }, 1 / 60f),
+            ("Müller α = 4, guards off", () => { var s = Source(path); s.Alpha = 4f; s.Guards = false; return s; }, 1 / 60f),
         };
         grids.Add(new Grid("extreme", "Extreme cases × solver settings (16 particles per strand)",
             "case", Array.ConvertAll(scenarios, x => x.ToString()), "settings", Array.ConvertAll(columns, c => c.Label), (r, c) =>
@@ -156,13 +170,15 @@ public static class StabilityCommand
     }
 
     private const string Definition = """
-        Each cell runs a small groom (6 sheets × 2 strands, 0.25 m strands) on the reference head ellipsoid with the default
-        settings except what the row and column change. The head moves (shake, teleport, spin) and then holds still for
-        the last second; every value is measured after every frame.
+        Each cell runs a small groom (6 sheets × 2 strands, 0.25 m strands, draped) on the reference head ellipsoid with the
+        default settings (the rest-shape bend model, docs/styles.md) except what the row and column change; the grids over α
+        run the source's triple shape matching. The head moves (shake, teleport, spin) and then holds still for the last
+        second; every value is measured after every frame. In the grid over hair length the groom, the head and the head's
+        motion are scaled (lengths × k, times × √k: the same motion at another size) and the frame time is as given.
 
         Extreme cases: Shake (head shakes ±40° at 1.5 Hz, 2 s); Teleport (the head jumps 1 m and turns 120° in one
         frame: carried rigidly); NearTeleport (jumps 0.45 m and turns 55° in one frame, just under the teleport limits of
-        0.5 m and 60°); FastSpin (5 turns/s for 2 s, then stops dead); VeryFastSpin (20 turns/s: at 60 Hz that is 120°
+        0.47 m — twice the small groom's reach — and 60°); FastSpin (5 turns/s for 2 s, then stops dead); VeryFastSpin (20 turns/s: at 60 Hz that is 120°
         a frame, so every frame counts as a teleport and the hair turns rigidly); ZeroLengthEdges (every free particle
         starts on its root); CoincidentParticles (particles start in coincident pairs); StartInsideHead (free particles
         start scattered inside the head ellipsoid).
@@ -174,20 +190,23 @@ public static class StabilityCommand
            more the cell shows it as ↓ and the percentage;
         3. no free particle is inside a collider after any frame;
         4. the energy dies down once the head stops: the mean kinetic energy of the last 0.5 s is at most 0.9 × that of
-           the 0.5 s before, or below 1e-4 J/kg (hair at rest).
+           the 0.5 s before, or below 1e-4 J/kg (hair at rest; both scaled with the size in the grid over hair length).
 
         Guards (SimulationSettings.Guards, on by default; StabilityGuards.cs, applied in HairPipeline.Step to the copy of
         the settings every system reads, so the fast path inherits them):
         - **α clamp**: in Müller mode α above 1 is used as 1 (α = 2 reverses each particle's offset from its goal every
           substep; above 2 it grows). Without it: the source's scheme at α = 4 never calms down (✗ E↑ in the grid "The
           source's scheme, faithfully").
-        - **Substep length ≤ MaxSubstep** (1/60 s): a long frame gets more substeps. Without it: the source's scheme at
-          α = 0.5 and 1/30 s never calms down.
-        - **Head travel ≤ MaxHeadTravel per substep** (2 cm, measured at the hair's reach): a head that jumps just under
-          the teleport limits gets enough substeps that the collider does not sweep deep into the hair in one substep.
-          Without it: NearTeleport tears edges by 41–72 % (columns "guards off" of the extreme cases).
-        - Already in the core and kept: the speed limit MaxSpeed (40 m/s), which bounds every displacement, and the
-          teleport handling (a jump over TeleportDistance / TeleportAngle carries the hair rigidly).
+        - **Gravity's fall per substep ≤ MaxFallPerSubstep** (5 % of the groom's mean segment, h²·g ≤ 0.05·ℓ): a long frame,
+          or small hair, gets more substeps (25 cm hair: substeps of at most 9.2 ms). This is the scale-free form of the
+          former absolute limit of 1/60 s per substep (MaxSubstep, now off by default). Without a limit: the source's
+          scheme at α = 0.5 and 1/30 s never calms down.
+        - **Head travel ≤ MaxHeadTravel per substep** (1.2 mean segments: 2 cm on the reference groom, measured at the
+          hair's reach): a head that jumps just under the teleport limits gets enough substeps that the collider does not
+          sweep deep into the hair in one substep. Without it the source's scheme tears edges in NearTeleport (columns
+          "guards off" of the extreme cases).
+        - Already in the core and kept: the speed limit MaxSpeed (25 natural speeds √(g·L): 40 m/s for 25 cm hair), and the
+          teleport handling (a jump over TeleportDistance, 2 × the hair's reach, or TeleportAngle carries the hair rigidly).
         Not changed by the guards, because it is the user's model and not a numerical failure: α = 0 with no length pass
         has nothing holding a strand together, so its free particles fall (at most at MaxSpeed) and never stop (✗ E↑).
         The source's scheme stays stretchy with the guards (orange): only a length pass holds length.

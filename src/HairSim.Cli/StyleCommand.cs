@@ -9,20 +9,21 @@ namespace HairSim.Cli;
 
 /// <summary>
 /// A scripted styling session on the reference scene: settle, cut a chin-length bob (front view), select the
-/// fringe and fit a curl to it (side view), simulate on, then export .hair / .obj / .usda, save the hairstyle
-/// and draw before/after pictures. --bench times a full-scene cut instead.
+/// fringe and fit a curl to it (side view), simulate on while the head shakes, then export .hair / .obj / .usda,
+/// save the hairstyle and draw before/after pictures. --bench times a full-scene cut instead.
 /// </summary>
 public static class StyleCommand
 {
-    public const string Help = "scripted cut + fit on the reference scene, exports .hair/.obj/.usda/.hairstyle/.svg: --out ./out --settle 1 --after 2 --stiffness 0.05 --sheets --strands --particles --bench [--runs 30]";
+    public const string Help = "scripted cut + fit on the reference scene, then head shake; exports .hair/.obj/.usda/.hairstyle/.svg: --out ./out --settle 1 --after 10 --stiffness 0 --sheets --strands --particles --bench [--runs 30]";
 
     private static readonly CultureInfo Ci = CultureInfo.InvariantCulture;
 
     public static int Execute(CliArgs a)
     {
         string outDir = a.String("out", "out");
-        double settle = a.Double("settle", 1), after = a.Double("after", 2);
-        float stiffness = (float)a.Double("stiffness", 0.05);
+        double settle = a.Double("settle", 1), after = a.Double("after", 10);
+        // The default bend model holds the style by itself; a global pull to the rest pose is optional.
+        float stiffness = (float)a.Double("stiffness", 0);
         var groom = GroomSettings.Reference();
         groom.SheetCount = a.Int("sheets", groom.SheetCount);
         groom.StrandsPerSheet = a.Int("strands", groom.StrandsPerSheet);
@@ -38,11 +39,11 @@ public static class StyleCommand
         var w = scene.World;
         using var dispatcher = ThreadDispatchers.CreateDefault();
         var sim = new HairSimulation(scene, dispatcher: dispatcher);
-        Console.WriteLine($"scene: {w.SheetCount} sheets × {groom.StrandsPerSheet} strands × {groom.ParticlesPerStrand} particles = {w.StrandCount:N0} strands; global shape stiffness {stiffness.ToString(Ci)}");
+        Console.WriteLine($"scene: {w.SheetCount} sheets × {groom.StrandsPerSheet} strands × {groom.ParticlesPerStrand} particles = {w.StrandCount:N0} strands; bend model {settings.Bend}, Sag {settings.Sag.ToString(Ci)}; global shape stiffness {stiffness.ToString(Ci)}");
         Simulate(sim, settle, "settling");
         var history = new EditHistory();
         scene.SetComponent(history);
-        // The settled hair becomes the rest pose, so the styling stiffness holds it hanging (not as grown, standing out).
+        // The settled hair becomes the rest pose: what the user sees is what the bend model holds.
         history.Do(HairEditor.BakeRestPose(scene));
         settings.GlobalShapeStiffness = stiffness;
         scene.SettingsChanged();
@@ -85,9 +86,11 @@ public static class StyleCommand
         history.Do(fit);
         Console.WriteLine(string.Create(Ci, $"fit: {fringe.Count:N0} fringe strands fitted to a curl stroke (plan {fitMs:F1} ms, key curve {key.Length * 100:F1} cm, stroke {fit.StrokeLength * 100:F1} cm{(fit.Extended ? ", extended straight" : "")})"));
 
-        Simulate(sim, after, "simulating");
+        double fitted = Curliness(w, fringe);
+        double during = Simulate(sim, after, "head shaking", shake: true, fringe);
+        Simulate(sim, 1, "head still");
         var m = WorldMetrics.Measure(scene);
-        Console.WriteLine(string.Create(Ci, $"after {after:F1} s: non-finite {m.NonFinite}, max edge stretch {m.MaxEdgeStretch * 100:F3} %, fringe tip–root / length {Curliness(w, fringe):F3} (1 = hanging straight)"));
+        Console.WriteLine(string.Create(Ci, $"after {after:F1} s of head shake and 1 s still: non-finite {m.NonFinite}, max edge stretch {m.MaxEdgeStretch * 100:F3} %, fringe tip–root / length {fitted:F3} fitted → {Curliness(w, fringe):F3} (1 = hanging straight); fringe's farthest particle from its fitted place {FromStyle(w, fringe) * 100:F2} % of its length now, {during * 100:F1} % at most while shaking"));
 
         var curves = StrandCurves.FromWorld(w);
         var files = new (string Name, Action<string> Write)[]
@@ -115,12 +118,38 @@ public static class StyleCommand
         return Vector2.Clamp(s, Vector2.Zero, cam.ViewportSize);
     }
 
-    private static void Simulate(HairSimulation sim, double seconds, string label)
+    /// <summary>Simulates at 60 Hz, the head still or shaking; returns the fringe's worst distance from its style (share of length) seen, if asked.</summary>
+    private static double Simulate(HairSimulation sim, double seconds, string label, bool shake = false, StrandSelection? watch = null)
     {
         int frames = (int)Math.Round(seconds * 60);
-        if (frames == 0) return;
+        if (frames == 0) return 0;
         var progress = new Progress(label, frames);
-        for (int f = 0; f < frames; f++) { sim.Step(1f / 60f); progress.Report(f + 1); }
+        double worst = 0;
+        for (int f = 0; f < frames; f++)
+        {
+            if (shake) sim.Step(1f / 60f, Measurement.HeadMotion.Shake((f + 1) / 60f)); else sim.Step(1f / 60f, RigidTransform.Identity);
+            if (watch != null && f % 6 == 0) worst = Math.Max(worst, FromStyle(sim.World, watch));
+            progress.Report(f + 1);
+        }
+        return worst;
+    }
+
+    /// <summary>Farthest particle of the selected strands from its rest place on the head, as a share of its strand's length.</summary>
+    private static double FromStyle(HairWorld w, StrandSelection sel)
+    {
+        double worst = 0;
+        foreach (int s in sel.Strands)
+        {
+            double length = 0, d = 0;
+            int first = w.StrandFirst[s];
+            for (int k = 0; k < w.StrandParticleCount[s]; k++)
+            {
+                if (k > 0) length += w.RestLength[first + k];
+                d = Math.Max(d, Vector3.Distance(w.GetPosition(first + k), w.Head.TransformPoint(w.GetRest(first + k))));
+            }
+            worst = Math.Max(worst, d / length);
+        }
+        return worst;
     }
 
     private static double Curliness(HairWorld w, StrandSelection sel)

@@ -24,6 +24,7 @@ public static class GroomBuilder
         float strandSpacing = sheetWidth / g.StrandsPerSheet;
         float segment = g.StrandLength / (g.ParticlesPerStrand - 1);
         var pts = new Vector3[g.ParticlesPerStrand];
+        float headScale = g.HeadRadii.Length() / GroomSettings.Reference().HeadRadii.Length();
 
         for (int q = 0; q < g.SheetCount; q++)
         {
@@ -36,7 +37,8 @@ public static class GroomBuilder
                 float across = (j - (g.StrandsPerSheet - 1) * 0.5f) * strandSpacing;
                 float jx = (rng.NextFloat() - 0.5f) * g.RootJitter * strandSpacing;
                 float jy = (rng.NextFloat() - 0.5f) * g.RootJitter * spacing * 0.5f;
-                var onSphere = dir * 0.1f + tangent * (across + jx) + bitangent * jy;
+                // Offsets across the sheet against the head's size (0.1 m on the reference head), so a scaled groom is the same groom.
+                var onSphere = dir * (0.1f * headScale) + tangent * (across + jx) + bitangent * jy;
                 var (root, normal) = SurfacePoint(g, onSphere);
                 root += normal * g.RootLift;
                 Comb(g, root, normal, segment, pts);

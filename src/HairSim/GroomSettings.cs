@@ -48,11 +48,11 @@ public sealed class GroomSettings
             throw new ArgumentOutOfRangeException(nameof(ParticlesPerStrand), ParticlesPerStrand, $"Particles per strand must be in 2 … {HairWorld.MaxParticlesPerStrand}.");
         if (TotalParticles > HairWorld.MaxParticles)
             throw new ArgumentOutOfRangeException(nameof(SheetCount), TotalParticles, $"{TotalParticles:N0} particles exceed the limit of {HairWorld.MaxParticles:N0}.");
-        if (!float.IsFinite(StrandLength) || StrandLength <= 0f || StrandLength > 10f)
-            throw new ArgumentOutOfRangeException(nameof(StrandLength), StrandLength, "Strand length must be in (0, 10] metres.");
+        if (!float.IsFinite(StrandLength) || StrandLength <= 0f || StrandLength > 1000f)
+            throw new ArgumentOutOfRangeException(nameof(StrandLength), StrandLength, "Strand length must be in (0, 1000] metres.");
         if (!float.IsFinite(HeadRadii.X) || !float.IsFinite(HeadRadii.Y) || !float.IsFinite(HeadRadii.Z) ||
-            HeadRadii.X <= 1e-4f || HeadRadii.Y <= 1e-4f || HeadRadii.Z <= 1e-4f || HeadRadii.Length() > 100f)
-            throw new ArgumentOutOfRangeException(nameof(HeadRadii), HeadRadii, "Head radii must be finite, positive and at most 100 m.");
+            HeadRadii.X <= 1e-5f || HeadRadii.Y <= 1e-5f || HeadRadii.Z <= 1e-5f || HeadRadii.Length() > 1000f)
+            throw new ArgumentOutOfRangeException(nameof(HeadRadii), HeadRadii, "Head radii must be finite, at least 0.01 mm and at most 1000 m.");
         if (!float.IsFinite(HeadCenter.X) || !float.IsFinite(HeadCenter.Y) || !float.IsFinite(HeadCenter.Z))
             throw new ArgumentException("Head centre must be finite.", nameof(HeadCenter));
         Angle(ScalpAngleBack, nameof(ScalpAngleBack));

@@ -15,7 +15,7 @@ public sealed class HairPipeline
     private readonly IThreadDispatcher _dispatcher;
     private readonly FrameContext _ctx = new();
     private readonly SimulationSettings _guarded = new();
-    private float _reach, _segment;
+    private GroomScale _scale;
     private int _reachStamp;
     private readonly Action<int> _substepJob, _frameEndJob;
     private int _jobCount;
@@ -38,8 +38,7 @@ public sealed class HairPipeline
         _substepJob = RunSubstepJob;
         _frameEndJob = RunFrameEndJob;
         SystemNames = Array.ConvertAll(_all, s => s.Name);
-        _reach = StabilityGuards.Reach(scene.World);
-        _segment = StabilityGuards.MeanSegment(scene.World);
+        _scale = GroomScale.Of(scene.World);
         _reachStamp = scene.World.EditStamp;
     }
 
@@ -63,6 +62,9 @@ public sealed class HairPipeline
     /// <summary>The context of the last frame (teleport flag, substep length, …).</summary>
     public FrameContext LastFrame => _ctx;
 
+    /// <summary>The groom's size the scale-free settings are measured against (updated after each edit).</summary>
+    public GroomScale Scale => _scale;
+
     /// <summary>Advances the scene by dt seconds while the head moves to <paramref name="headTarget"/>.</summary>
     public void Step(float dt, RigidTransform headTarget)
     {
@@ -73,13 +75,10 @@ public sealed class HairPipeline
         var delta = RigidTransform.Delta(world.Head, headTarget);
         var requested = _scene.Settings;
         float headMove = (headTarget.Position - world.Head.Position).Length();
-        bool teleported = headMove > requested.TeleportDistance || delta.Angle > requested.TeleportAngle;
-        if (world.EditStamp != _reachStamp) // only after edits
-        {
-            _reach = StabilityGuards.Reach(world); _segment = StabilityGuards.MeanSegment(world); _reachStamp = world.EditStamp;
-        }
+        if (world.EditStamp != _reachStamp) { _scale = GroomScale.Of(world); _reachStamp = world.EditStamp; } // only after edits
+        bool teleported = headMove > requested.TeleportDistance * _scale.Reach || delta.Angle > requested.TeleportAngle;
         // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
-        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _reach, _segment);
+        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _scale);
         var st = _guarded;
         ctx.Settings = st;
         ctx.Dt = dt;

@@ -162,12 +162,20 @@ public sealed class HairWorld
             throw new ArgumentException($"A strand needs 2 … {cap} points, got {restHeadSpace.Length}.", nameof(restHeadSpace));
         if (pinned < 1 || pinned > restHeadSpace.Length)
             throw new ArgumentOutOfRangeException(nameof(pinned), pinned, "At least the root must be pinned, at most every point.");
+        double chord = 0;
         for (int k = 0; k < restHeadSpace.Length; k++)
         {
             var p = restHeadSpace[k];
             if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z))
                 throw new ArgumentException($"Point {k} of strand {strand} is not finite.", nameof(restHeadSpace));
-            if (k > 0 && Vector3.DistanceSquared(p, restHeadSpace[k - 1]) < 1e-18f)
+            if (k > 0) chord += Vector3.Distance(p, restHeadSpace[k - 1]);
+        }
+        // Coincident: a segment shorter than a millionth of the strand's mean segment (scale-free), or exactly zero.
+        double tiny = 1e-6 * chord / (restHeadSpace.Length - 1);
+        for (int k = 1; k < restHeadSpace.Length; k++)
+        {
+            double d = Vector3.Distance(restHeadSpace[k], restHeadSpace[k - 1]);
+            if (d <= tiny || d == 0)
                 throw new ArgumentException($"Points {k - 1} and {k} of strand {strand} coincide: zero-length segments are not allowed.", nameof(restHeadSpace));
         }
 

@@ -67,8 +67,12 @@ public sealed class SimulationSettings
     /// <summary>Pull towards the head-space rest pose (0 = off, as in the source); holds styled bangs in place.</summary>
     public float GlobalShapeStiffness { get; set; }
     public ShapeMatchMode Mode { get; set; } = ShapeMatchMode.Muller;
-    /// <summary>Velocity damping per second: v ← v·max(0, 1 − Damping·h).</summary>
-    public float Damping { get; set; } = 2f;
+    /// <summary>
+    /// Air drag, scale-free: velocities decay as e^(−Damping·t/T₀), with T₀ = √(L/1 g) the hair's natural time (L the
+    /// mean strand length; 0.16 s for 25 cm hair). 0 = none; the default 0.32 is 2/s on 25 cm hair, 0.32/s on a 10 m
+    /// creature's; 1 = a swing loses most of its speed within about one natural time (heavy, wet-looking hair).
+    /// </summary>
+    public float Damping { get; set; } = 0.32f;
     public int Substeps { get; set; } = 4;
     public LengthMode Length { get; set; } = LengthMode.FollowTheLeader;
     public int LengthIterations { get; set; } = 4;
@@ -76,10 +80,16 @@ public sealed class SimulationSettings
     public float LengthDamping { get; set; } = 0.9f;
     /// <summary>Tangential velocity kept on contact with a collider (1 = frictionless sliding).</summary>
     public float ContactSlide { get; set; } = 1f;
-    /// <summary>Speed limit in m/s, a guard against explosions (0 = off).</summary>
-    public float MaxSpeed { get; set; } = 40f;
-    /// <summary>Head moves farther than this in one frame count as a teleport: the hair is carried rigidly.</summary>
-    public float TeleportDistance { get; set; } = 0.5f;
+    /// <summary>
+    /// Speed limit, a guard against explosions, in units of the hair's natural speed √(1 g·L) (1.57 m/s for 25 cm hair):
+    /// the default 25 is 40 m/s there. Bounds the velocity every frame leaves in the buffers. 0 = off.
+    /// </summary>
+    public float MaxSpeed { get; set; } = 25f;
+    /// <summary>
+    /// A head move farther than this share of the hair's reach (the farthest rest particle from the head origin,
+    /// 0.26 m for the reference groom, so 0.52 m) in one frame is a teleport: the hair is carried rigidly.
+    /// </summary>
+    public float TeleportDistance { get; set; } = 2f;
     /// <summary>Head turns more than this (radians) in one frame count as a teleport.</summary>
     public float TeleportAngle { get; set; } = MathF.PI / 3f;
     public SolverPath Path { get; set; } = SolverPath.Fast;
@@ -89,10 +99,16 @@ public sealed class SimulationSettings
     /// Off = exactly the requested settings (e.g. the source's scheme, faithfully).
     /// </summary>
     public bool Guards { get; set; } = true;
-    /// <summary>Longest substep (s) the guards allow; 0 = no limit. A frame hitch then adds substeps instead of lengthening them.</summary>
-    public float MaxSubstep { get; set; } = 1f / 60f;
-    /// <summary>Farthest (m) the guards let any point of the hair's reach move with the head in one substep; 0 = no limit.</summary>
-    public float MaxHeadTravel { get; set; } = 0.02f;
+    /// <summary>
+    /// Longest substep (s) the guards allow; 0 = no limit (the default: a time in seconds is not scale-free, and the fall
+    /// limit <see cref="MaxFallPerSubstep"/> sets the substep from the groom's own size instead; 1/60 s was the limit before).
+    /// </summary>
+    public float MaxSubstep { get; set; }
+    /// <summary>
+    /// Farthest the guards let any point of the hair's reach move with the head in one substep, as a share of the groom's
+    /// mean segment length (1.2 = 2 cm for the reference groom's 1.67 cm segments); 0 = no limit.
+    /// </summary>
+    public float MaxHeadTravel { get; set; } = 1.2f;
 
     /// <summary>
     /// Farthest gravity may move a particle in one substep, as a share of the groom's mean segment length (h²·|g| ≤ this × ℓ);
@@ -119,7 +135,7 @@ public sealed class SimulationSettings
         Range(BendDamping, 0f, 100f, nameof(BendDamping));
         Range(Alpha, 0f, 1000f, nameof(Alpha));
         Range(GlobalShapeStiffness, 0f, 1f, nameof(GlobalShapeStiffness));
-        Range(Damping, 0f, 1000f, nameof(Damping));
+        Range(Damping, 0f, 100f, nameof(Damping));
         if (Substeps < 1 || Substeps > 256) throw new ArgumentOutOfRangeException(nameof(Substeps), Substeps, "Substeps must be in 1 … 256.");
         if (LengthIterations < 1 || LengthIterations > 256) throw new ArgumentOutOfRangeException(nameof(LengthIterations), LengthIterations, "Length iterations must be in 1 … 256.");
         Range(LengthDamping, 0f, 1f, nameof(LengthDamping));
@@ -128,7 +144,7 @@ public sealed class SimulationSettings
         Range(TeleportDistance, 0f, 1e6f, nameof(TeleportDistance));
         Range(TeleportAngle, 0f, MathF.PI, nameof(TeleportAngle));
         Range(MaxSubstep, 0f, 1f, nameof(MaxSubstep));
-        Range(MaxHeadTravel, 0f, 10f, nameof(MaxHeadTravel));
+        Range(MaxHeadTravel, 0f, 1000f, nameof(MaxHeadTravel));
         Range(MaxFallPerSubstep, 0f, 100f, nameof(MaxFallPerSubstep));
         if (!Enum.IsDefined(Bend)) throw new ArgumentOutOfRangeException(nameof(Bend));
         if (!Enum.IsDefined(Mode)) throw new ArgumentOutOfRangeException(nameof(Mode));

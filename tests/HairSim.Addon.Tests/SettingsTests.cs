@@ -16,6 +16,9 @@ public class SettingsTests
         Assert.Equal((r.SheetCount, r.StrandsPerSheet, r.ParticlesPerStrand, r.StrandLength), (g.SheetCount, g.StrandsPerSheet, g.ParticlesPerStrand, g.StrandLength));
         var sim = s.ToSimulation();
         Assert.Equal(s.Stiffness, sim.Alpha);
+        // The inspector's defaults are the library's: the same look from Godot as from the library.
+        var lib = new SimulationSettings();
+        Assert.Equal((lib.Bend, lib.Sag, lib.BendDamping, lib.Damping), (sim.Bend, sim.Sag, sim.BendDamping, sim.Damping));
         Assert.Equal(s.Substeps, sim.Substeps);
         Assert.Equal(s.Gravity, sim.Gravity);
         Assert.Equal(s.RenderDensity, s.ToRender().StrandsPerGap);
@@ -26,12 +29,12 @@ public class SettingsTests
     {
         var s = new HairNodeSettings
         {
-            StrandsPerSheet = 0, StrandLength = float.NaN, Stiffness = 1.5f, Substeps = 0,
+            StrandsPerSheet = 0, StrandLength = float.NaN, Stiffness = 1.5f, Substeps = 0, Sag = -1f,
             Gravity = new Vector3(0, float.PositiveInfinity, 0), RenderDensity = -1, TipColor = new Vector4(1, 1, 1, 2),
             RootWidth = 0.001f, TipWidth = 0.002f, StepsPerSecond = 0,
         };
         var problems = s.Validate();
-        foreach (var name in new[] { "Strands Per Sheet", "Strand Length", "Stiffness", "Substeps", "Gravity", "Render Density", "Tip Color", "Tip Width", "Steps Per Second" })
+        foreach (var name in new[] { "Strands Per Sheet", "Strand Length", "Stiffness", "Sag", "Substeps", "Gravity", "Render Density", "Tip Color", "Tip Width", "Steps Per Second" })
             Assert.Contains(problems, p => p.StartsWith(name, StringComparison.Ordinal));
         var e = Assert.Throws<HairSettingsException>(() => s.ToSimulation());
         Assert.Equal(problems.Count, e.Problems.Count);

@@ -23,9 +23,16 @@ public sealed class HairNodeSettings
     public int StrandsPerSheet { get; set; } = 40;
     public int ParticlesPerStrand { get; set; } = 16;
     public float StrandLength { get; set; } = 0.25f;
-    /// <summary>Shape-matching α (Müller): 0 = limp, 1 = holds its rest shape.</summary>
+    /// <summary>What keeps the shape: the rest shape (default), the source's triples, or nothing (limp).</summary>
+    public BendModel Bend { get; set; } = BendModel.RestShape;
+    /// <summary>How far a horizontal strand's tip sags under 1 g, as a share of its length (0.01 = styled hair that holds).</summary>
+    public float Sag { get; set; } = 0.01f;
+    /// <summary>Damping ratio of bending: 0 = a bent strand rings, 1 = it returns without overshoot.</summary>
+    public float BendDamping { get; set; } = 0.5f;
+    /// <summary>The source's triple shape-matching α (Müller), used with <see cref="BendModel.SourceTriples"/>: 0 = limp, 1 = stiffest.</summary>
     public float Stiffness { get; set; } = 1f;
-    public float Damping { get; set; } = 2f;
+    /// <summary>Air drag per natural time √(length / 1 g): 0.32 = 2/s on 25 cm hair, the same look at any size.</summary>
+    public float Damping { get; set; } = 0.32f;
     public int Substeps { get; set; } = 4;
     public Vector3 Gravity { get; set; } = new(0f, -9.81f, 0f);
     /// <summary>Interpolated render strands between neighbouring simulated strands.</summary>
@@ -52,6 +59,9 @@ public sealed class HairNodeSettings
                 p.Add($"Sheets × Strands Per Sheet × Particles Per Strand = {total:N0} particles, more than the {HairWorld.MaxParticles:N0} a world holds.");
         }
         FloatRange(p, "Strand Length", StrandLength, 0.001f, 10f);
+        if (!Enum.IsDefined(Bend)) p.Add($"Bend must be one of {string.Join(", ", Enum.GetNames<BendModel>())}, got {(int)Bend}.");
+        FloatRange(p, "Sag", Sag, 0f, 100f);
+        FloatRange(p, "Bend Damping", BendDamping, 0f, 100f);
         FloatRange(p, "Stiffness", Stiffness, 0f, 1f);
         FloatRange(p, "Damping", Damping, 0f, 100f);
         IntRange(p, "Substeps", Substeps, 1, 64);
@@ -94,6 +104,9 @@ public sealed class HairNodeSettings
         ThrowIfInvalid();
         var s = new SimulationSettings
         {
+            Bend = Bend,
+            Sag = Sag,
+            BendDamping = BendDamping,
             Alpha = Stiffness,
             Damping = Damping,
             Substeps = Substeps,

@@ -14,7 +14,7 @@ internal static partial class FastPathRegistration
                 HeadFollowSystem.SystemName => s => new FastHeadFollowSystem(s.World),
                 ShapeMatchSystem.SystemName => s => new FastShapeMatchSystem(s.World.MaxStrandCapacity, allowWide, s.World),
                 IntegrateSystem.SystemName => _ => new FastIntegrateSystem(allowWide),
-                BendSystem.SystemName => s => new FastBendSystem(s.World),
+                BendSystem.SystemName => s => new FastBendSystem(s.World, allowWide),
                 LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide),
                 CollideSystem.SystemName => _ => new FastCollideSystem(allowWide),
                 InterpolateSystem.SystemName => s => new FastInterpolateSystem(s),

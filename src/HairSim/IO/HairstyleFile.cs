@@ -13,7 +13,8 @@ namespace HairSim.IO;
 /// </code>
 /// Loading checks size caps, the checksum, the version and every count against the bytes that remain before
 /// allocating, and every value's range; anything wrong is an <see cref="InvalidDataException"/> with a clear message.
-/// Version 1 files (before the bend models) load with <see cref="BendModel.SourceTriples"/>, the model they were made with.
+/// Version 1 files (before the bend models) load with <see cref="BendModel.SourceTriples"/>, the model they were made with,
+/// and their damping, speed limit and teleport distance turned from SI units into this build's groom-relative ones.
 /// </summary>
 public static class HairstyleFile
 {
@@ -206,6 +207,15 @@ public static class HairstyleFile
         foreach (float l in w.RestLength) if (l < 0f) throw new InvalidDataException("A rest length is negative.");
         Array.Copy(live, w.StrandParticleCount, strands);
         w.Head = head;
+        if (version == 1)
+        {
+            // Version 1 stored SI values (1/s, m/s, m); this build's are relative to the groom (see GroomScale).
+            var scale = GroomScale.Of(w);
+            st.Damping = (float)Math.Min(100.0, st.Damping * scale.NaturalTime);
+            st.MaxSpeed = (float)(st.MaxSpeed / scale.NaturalSpeed);
+            if (scale.Reach > 0f) st.TeleportDistance /= scale.Reach;
+            st.Validate();
+        }
 
         var scene = new HairScene(w, st);
         foreach (var c in colliders) scene.AddCollider(c);

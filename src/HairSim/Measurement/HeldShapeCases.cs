@@ -119,4 +119,40 @@ public static class HeldShapeCases
         int bad = w.CountNonFinite();
         return new HeldShapeResult(tip / length, worst / length, speed / natural, stretch, bad);
     }
+
+    /// <summary>
+    /// The same head shake at another size: the canonical small groom (25 cm strands on the reference head) and the
+    /// head motion scaled by <paramref name="scale"/> in length and √scale in time (Froude scaling), run for 2 s × √scale
+    /// at <paramref name="hz"/> frames per second; returns every live particle's position divided by the scale. A scale-free model gives
+    /// the same shape at every size (the positions agree up to the frame times, which are not scaled).
+    /// </summary>
+    public static Vector3[] ScaledShake(float scale, double hz, SimulationSettings settings, float seconds = 2f)
+    {
+        if (!(scale > 0f) || !float.IsFinite(scale)) throw new ArgumentOutOfRangeException(nameof(scale), scale, "Scale must be positive and finite.");
+        var g = CanonicalCases.SmallGroom();
+        g.StrandLength *= scale; g.HeadRadii *= scale; g.HeadCenter *= scale; g.RootLift *= scale;
+        var scene = GroomBuilder.BuildScene(g, settings);
+        var sim = new HairSimulation(scene);
+        var w = scene.World;
+        float time = MathF.Sqrt(scale), dt = (float)(1 / hz);
+        int frames = (int)Math.Round(seconds * time * hz);
+        for (int f = 0; f < frames; f++)
+        {
+            var shake = HeadMotion.Shake((f + 1) * dt / time);
+            sim.Step(dt, new RigidTransform(shake.Position * scale, shake.Rotation));
+        }
+        var result = new List<Vector3>();
+        for (int s = 0; s < w.StrandCount; s++)
+            for (int k = 0; k < w.StrandParticleCount[s]; k++) result.Add(w.GetPosition(w.StrandFirst[s] + k) / scale);
+        return result.ToArray();
+    }
+
+    /// <summary>Largest distance between corresponding points of two <see cref="ScaledShake"/> runs, as a share of the 25 cm strand.</summary>
+    public static double ShapeDifference(Vector3[] a, Vector3[] b)
+    {
+        if (a.Length != b.Length) throw new ArgumentException("The runs hold different particle counts.", nameof(b));
+        double d = 0;
+        for (int i = 0; i < a.Length; i++) d = Max(d, Vector3.Distance(a[i], b[i]));
+        return d / CanonicalCases.StrandLength;
+    }
 }

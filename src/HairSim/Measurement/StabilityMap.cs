@@ -55,38 +55,48 @@ public enum StabilityScenario
 /// </summary>
 public static class StabilityMap
 {
-    public static StabilityResult Run(SimulationSettings settings, float dt, int particles, StabilityScenario scenario, int sheets = 6)
+    /// <param name="scale">
+    /// Size of the groom and the head's motion against the reference (1 = 25 cm hair): lengths × scale, the motion's
+    /// times × √scale (Froude scaling, the same motion at another size), the frame time as given.
+    /// </param>
+    public static StabilityResult Run(SimulationSettings settings, float dt, int particles, StabilityScenario scenario, int sheets = 6, float scale = 1f)
     {
-        var scene = GroomBuilder.BuildScene(CanonicalCases.SmallGroom(particles, sheets, 2), settings);
+        if (!(scale > 0f) || !float.IsFinite(scale)) throw new ArgumentOutOfRangeException(nameof(scale), scale, "Scale must be positive and finite.");
+        var g = CanonicalCases.SmallGroom(particles, sheets, 2);
+        g.StrandLength *= scale; g.HeadRadii *= scale; g.HeadCenter *= scale; g.RootLift *= scale;
+        var scene = GroomBuilder.BuildScene(g, settings);
         var w = scene.World;
-        Prepare(w, scenario);
+        Prepare(w, scenario, scale);
         var sim = new HairSimulation(scene);
-        float moving = scenario switch { StabilityScenario.Teleport or StabilityScenario.NearTeleport => 0.5f, StabilityScenario.ZeroLengthEdges or StabilityScenario.CoincidentParticles or StabilityScenario.StartInsideHead => 0f, _ => 2f };
-        float total = moving + 1f;
+        float time = MathF.Sqrt(scale);
+        float moving = time * scenario switch { StabilityScenario.Teleport or StabilityScenario.NearTeleport => 0.5f, StabilityScenario.ZeroLengthEdges or StabilityScenario.CoincidentParticles or StabilityScenario.StartInsideHead => 0f, _ => 2f };
+        float total = moving + time;
         int frames = (int)MathF.Ceiling(total / dt);
         int stillFrom = (int)MathF.Round(moving / dt);
-        int half = (int)MathF.Round(0.5f / dt);
+        int half = Math.Max(1, (int)MathF.Round(0.5f * time / dt));
         double worst = 0, before = 0, after = 0, longest = 0, shortest = 0;
         int inside = 0, bad = 0;
-        var final = FinalPose(scenario, moving);
+        var final = Scaled(FinalPose(scenario, moving / time), scale);
         var previous = new float[w.ParticleCount * 3];
         Snapshot(w, previous);
         for (int f = 0; f < frames; f++)
         {
             float t = (f + 1) * dt;
-            var head = f + 1 <= stillFrom ? Pose(scenario, t) : final;
+            var head = f + 1 <= stillFrom ? Scaled(Pose(scenario, t / time), scale) : final;
             sim.Step(dt, head);
             var m = WorldMetrics.Measure(scene);
             bad = Math.Max(bad, m.NonFinite);
             worst = double.IsNaN(m.MaxEdgeStretch) || double.IsNaN(worst) ? double.NaN : Math.Max(worst, m.MaxEdgeStretch);
             inside = Math.Max(inside, m.ParticlesInside);
             EdgeExtremes(w, ref longest, ref shortest);
-            double e = VisibleKineticEnergy(w, previous, dt);
+            double e = VisibleKineticEnergy(w, previous, dt) / scale; // energy per mass ∝ speed² ∝ length
             if (f >= frames - half) after += e / half;
             else if (f >= frames - 2 * half) before += e / half;
         }
         return new StabilityResult(bad, worst, longest, shortest, inside, before, after);
     }
+
+    private static RigidTransform Scaled(RigidTransform pose, float scale) => new(pose.Position * scale, pose.Rotation);
 
     /// <summary>Largest elongation l/l0 − 1 and largest compression 1 − l/l0 over the live edges.</summary>
     private static void EdgeExtremes(HairWorld w, ref double elongation, ref double compression)
@@ -124,7 +134,7 @@ public static class StabilityMap
     };
 
     /// <summary>Degenerate starting states, written straight into the buffers (SetStrand refuses them as rest poses).</summary>
-    public static void Prepare(HairWorld w, StabilityScenario scenario)
+    public static void Prepare(HairWorld w, StabilityScenario scenario, float scale = 1f)
     {
         var rng = new SplitMix64(7);
         for (int s = 0; s < w.StrandCount; s++)
@@ -143,7 +153,7 @@ public static class StabilityMap
                         if (k % 2 == 1) w.SetPosition(i, w.GetPosition(i - 1));
                         break;
                     case StabilityScenario.StartInsideHead:
-                        w.SetPosition(i, new Vector3(rng.NextFloat() - 0.5f, rng.NextFloat() - 0.5f, rng.NextFloat() - 0.5f) * 0.08f);
+                        w.SetPosition(i, new Vector3(rng.NextFloat() - 0.5f, rng.NextFloat() - 0.5f, rng.NextFloat() - 0.5f) * (0.08f * scale));
                         break;
                 }
             }

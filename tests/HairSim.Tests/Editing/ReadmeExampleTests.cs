@@ -39,7 +39,7 @@ public class ReadmeExampleTests
             curlPoints[i] = new Vector2(400 + 40 * MathF.Sin(t) * (1 - i / 60f), 250 + 5 * i - 40 * MathF.Cos(t));
         }
         history.Do(HairEditor.Fit(scene, fringe, new Stroke(curlPoints, cam)));
-        scene.Settings.GlobalShapeStiffness = 0.05f;
+        scene.Settings.Sag = 0.01f;   // how stiff the style holds: the default, tip sag of a horizontal strand, share of its length
         scene.SettingsChanged();
         Assert.Equal(2, history.UndoCount);
 

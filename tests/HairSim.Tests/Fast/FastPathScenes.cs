@@ -136,7 +136,7 @@ internal static class FastPathScenes
     public static RigidTransform HeadAt(int frame, bool teleport = true)
     {
         float t = frame / 60f;
-        var shift = teleport && frame >= TeleportFrame ? new Vector3(0.8f, 0, 0) : Vector3.Zero;
+        var shift = teleport && frame >= TeleportFrame ? new Vector3(1.6f, 0, 0) : Vector3.Zero; // over twice any scene's reach
         var shake = HairSim.Measurement.HeadMotion.Shake(t);
         return new RigidTransform(shift + shake.Position, shake.Rotation);
     }

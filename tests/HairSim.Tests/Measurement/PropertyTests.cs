@@ -56,6 +56,7 @@ public class PropertyTests
             if (c.Start > 0) StabilityMap.Prepare(w, c.Start switch { 1 => StabilityScenario.ZeroLengthEdges, 2 => StabilityScenario.CoincidentParticles, _ => StabilityScenario.StartInsideHead });
             var sim = new HairSimulation(scene);
             float dt = 1f / c.Hz, reach = StabilityGuards.Reach(w);
+            double maxSpeed = st.MaxSpeed * GroomScale.Of(w).NaturalSpeed; // MaxSpeed is in units of √(g·L)
             double headTravel = 0;
             int substepsRun = 0;
             for (int f = 0; f < Frames; f++)
@@ -69,7 +70,7 @@ public class PropertyTests
                 if (m.ParticlesInside != 0) Assert.Fail($"frame {f}: {m.ParticlesInside} particles inside the head ({m.MaxPenetration * 1000:F3} mm)");
                 // The speed limit bounds how far free neighbours drift apart, pinned roots move with the head, and a
                 // push-out adds at most the head's size.
-                double bound = 2 * st.MaxSpeed * (f + 1) * dt + headTravel + 0.25;
+                double bound = 2 * maxSpeed * (f + 1) * dt + headTravel + 0.25;
                 for (int s = 0; s < w.StrandCount; s++)
                     for (int k = 1; k < w.StrandParticleCount[s]; k++)
                     {

@@ -5,10 +5,13 @@ namespace HairSim.Tests.Measurement;
 
 public class StabilityGuardsTests
 {
+    /// <summary>The reference groom's size: 25 cm strands of 16 particles, 0.35 m reach.</summary>
+    private static readonly GroomScale ReferenceScale = GroomScale.Of(0.25f, 16, 0.35f);
+
     private static SimulationSettings Guarded(SimulationSettings requested, float dt, float move = 0f, float angle = 0f, bool teleported = false)
     {
         var effective = new SimulationSettings();
-        StabilityGuards.Apply(requested, effective, dt, move, angle, teleported, 0.35f);
+        StabilityGuards.Apply(requested, effective, dt, move, angle, teleported, ReferenceScale);
         return effective;
     }
 
@@ -36,7 +39,7 @@ public class StabilityGuardsTests
         float Segment(float length) => length / 15f;
         int Substeps(float length, float dt)
         {
-            StabilityGuards.Apply(new SimulationSettings(), effective, dt, 0f, 0f, false, length, Segment(length));
+            StabilityGuards.Apply(new SimulationSettings(), effective, dt, 0f, 0f, false, GroomScale.Of(length, 16, length));
             return effective.Substeps;
         }
         double g = new SimulationSettings().Gravity.Length();
@@ -44,32 +47,76 @@ public class StabilityGuardsTests
         Assert.Equal(10, Substeps(0.01f, 1 / 60f));
         Assert.Equal(4, Substeps(0.25f, 1 / 60f));
         Assert.Equal(4, Substeps(10f, 1 / 60f));
-        StabilityGuards.Apply(new SimulationSettings { Guards = false }, effective, 1 / 60f, 0f, 0f, false, 0.01f, Segment(0.01f));
+        StabilityGuards.Apply(new SimulationSettings { Guards = false }, effective, 1 / 60f, 0f, 0f, false, GroomScale.Of(0.01f, 16, 0.01f));
         Assert.Equal(4, effective.Substeps);
-        StabilityGuards.Apply(new SimulationSettings { MaxFallPerSubstep = 0f }, effective, 1 / 60f, 0f, 0f, false, 0.01f, Segment(0.01f));
+        StabilityGuards.Apply(new SimulationSettings { MaxFallPerSubstep = 0f }, effective, 1 / 60f, 0f, 0f, false, GroomScale.Of(0.01f, 16, 0.01f));
         Assert.Equal(4, effective.Substeps);
     }
 
     [Fact]
     public void LongFramesGetMoreSubstepsSoTheSubstepStaysShort()
     {
-        // Default limit 1/60 s: 4 substeps are enough down to 15 Hz, one substep only at 60 Hz and above.
-        Assert.Equal(4, Guarded(new SimulationSettings(), 1 / 15f).Substeps);
-        Assert.Equal(1, Guarded(new SimulationSettings { Substeps = 1 }, 1 / 60f).Substeps);
-        Assert.Equal(4, Guarded(new SimulationSettings { Substeps = 1 }, 1 / 15f).Substeps);
-        Assert.Equal(16, Guarded(new SimulationSettings { MaxSubstep = 1 / 240f }, 1 / 15f).Substeps);
-        Assert.Equal(8, Guarded(new SimulationSettings { Substeps = 8 }, 1 / 15f).Substeps);
-        Assert.Equal(1, Guarded(new SimulationSettings { Substeps = 1, Guards = false }, 1 / 15f).Substeps);
-        Assert.Equal(60, Guarded(new SimulationSettings(), 1f).Substeps);
-        Assert.Equal(StabilityGuards.MaxSubsteps, Guarded(new SimulationSettings(), 1 / 60f, 100f).Substeps);
+        // An absolute limit of 1/60 s (the fall limit off here, see SmallHairGetsSubstepsShortEnoughForItsSegments): 4 substeps are
+        // enough down to 15 Hz, one substep only at 60 Hz and above.
+        Assert.Equal(4, Guarded(new SimulationSettings { MaxFallPerSubstep = 0f, MaxSubstep = 1 / 60f }, 1 / 15f).Substeps);
+        Assert.Equal(1, Guarded(new SimulationSettings { MaxFallPerSubstep = 0f, MaxSubstep = 1 / 60f, Substeps = 1 }, 1 / 60f).Substeps);
+        Assert.Equal(4, Guarded(new SimulationSettings { MaxFallPerSubstep = 0f, MaxSubstep = 1 / 60f, Substeps = 1 }, 1 / 15f).Substeps);
+        Assert.Equal(16, Guarded(new SimulationSettings { MaxFallPerSubstep = 0f, MaxSubstep = 1 / 240f }, 1 / 15f).Substeps);
+        Assert.Equal(8, Guarded(new SimulationSettings { MaxFallPerSubstep = 0f, MaxSubstep = 1 / 60f, Substeps = 8 }, 1 / 15f).Substeps);
+        Assert.Equal(1, Guarded(new SimulationSettings { MaxFallPerSubstep = 0f, MaxSubstep = 1 / 60f, Substeps = 1, Guards = false }, 1 / 15f).Substeps);
+        Assert.Equal(60, Guarded(new SimulationSettings { MaxFallPerSubstep = 0f, MaxSubstep = 1 / 60f }, 1f).Substeps);
+        // With the default fall limit a 25 cm groom needs h ≤ 9.2 ms: 8 substeps at 15 Hz, 2 at 60 Hz.
+        Assert.Equal(8, Guarded(new SimulationSettings(), 1 / 15f).Substeps);
+        Assert.Equal(2, Guarded(new SimulationSettings { Substeps = 1 }, 1 / 60f).Substeps);
+        Assert.Equal(StabilityGuards.MaxSubsteps, Guarded(new SimulationSettings { MaxFallPerSubstep = 0f, MaxSubstep = 1 / 60f }, 1 / 60f, 100f).Substeps);
     }
 
     [Fact]
     public void FastHeadMovesGetMoreSubstepsButTeleportsDoNot()
     {
-        // 0.3 m + 0.5 rad × 0.35 m reach = 0.475 m of travel at 2 cm per substep.
+        // 0.3 m + 0.5 rad × 0.35 m reach = 0.475 m of travel at 1.2 × 1.67 cm = 2 cm per substep.
         Assert.Equal(24, Guarded(new SimulationSettings(), 1 / 60f, 0.3f, 0.5f).Substeps);
         Assert.Equal(4, Guarded(new SimulationSettings(), 1 / 60f, 0.3f, 0.5f, teleported: true).Substeps);
+    }
+
+    [Fact]
+    public void ScaleFreeSettingsBecomeTheSameLookAtEverySize()
+    {
+        // Damping and the speed limit are stated per natural time √(L/1 g) and natural speed √(1 g·L): the SI values the
+        // systems see scale as 1/√L and √L, so the defaults are 2/s and 40 m/s on 25 cm hair.
+        var effective = new SimulationSettings();
+        foreach (float length in new[] { 0.01f, 0.25f, 10f })
+        {
+            StabilityGuards.Apply(new SimulationSettings(), effective, 1 / 60f, 0f, 0f, false, GroomScale.Of(length, 16, length));
+            double t0 = Math.Sqrt(length / BendProfile.StandardGravity);
+            Assert.Equal(0.32 / t0, effective.Damping, 3);
+            Assert.Equal(25 * Math.Sqrt(BendProfile.StandardGravity * length), effective.MaxSpeed, 3);
+        }
+        StabilityGuards.Apply(new SimulationSettings(), effective, 1 / 60f, 0f, 0f, false, ReferenceScale);
+        Assert.InRange(effective.Damping, 1.95f, 2.05f);
+        Assert.InRange(effective.MaxSpeed, 38f, 40f);
+        // Head travel per substep is a share of the mean segment: 1.2 × 1.67 cm = 2 cm on the reference groom, 40 times that on a 40 times larger one.
+        var giant = GroomScale.Of(10f, 16, 14f);
+        StabilityGuards.Apply(new SimulationSettings(), effective, 1 / 60f, 0.3f * 40f, 0.5f, false, giant);
+        Assert.Equal(Guarded(new SimulationSettings(), 1 / 60f, 0.3f, 0.5f).Substeps, effective.Substeps);
+    }
+
+    [Fact]
+    public void TeleportsAreJumpsLongerThanAShareOfTheHairsReach()
+    {
+        foreach (float k in new[] { 0.04f, 1f, 40f })
+        {
+            var scene = GroomBuilder.BuildScene(new GroomSettings
+            {
+                SheetCount = 4, StrandsPerSheet = 2, ParticlesPerStrand = 8, StrandLength = 0.25f * k, HeadRadii = new System.Numerics.Vector3(0.078f, 0.1f, 0.095f) * k,
+            });
+            var sim = new HairSimulation(scene);
+            float reach = sim.Pipeline.Scale.Reach;
+            sim.Step(1 / 60f, new RigidTransform(new System.Numerics.Vector3(1.9f * reach, 0, 0), System.Numerics.Quaternion.Identity));
+            Assert.False(sim.Pipeline.LastFrame.Teleported, $"×{k}: a jump of 1.9 reaches is not a teleport");
+            sim.Step(1 / 60f, new RigidTransform(new System.Numerics.Vector3(3.95f * reach, 0, 0), System.Numerics.Quaternion.Identity));
+            Assert.True(sim.Pipeline.LastFrame.Teleported, $"×{k}: a second jump of 2.05 reaches is a teleport");
+        }
     }
 
     [Fact]

@@ -1,0 +1,154 @@
+using System.Runtime.CompilerServices;
+using System.Runtime.Intrinsics;
+using V = System.Runtime.Intrinsics.Vector512<float>;
+
+namespace HairSim.Fast;
+
+// Generated from FastBendSystem.Sweep.cs by replacing the 8-lane operations with their 16-lane twins; keep the two in step.
+
+/// <summary>
+/// The sweep over a tile of two 16-lane (AVX-512) chains per row: <see cref="Sweep"/>'s arithmetic in the same order
+/// on 16-lane vectors (lane-wise IEEE operations only, no estimates), so every strand gets the bits the 8-lane sweep
+/// gives it, with twice the strands per row latency.
+/// </summary>
+public sealed partial class FastBendSystem
+{
+    /// <summary>Sweep constants broadcast to 16 lanes.</summary>
+    private readonly struct Consts16
+    {
+        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip;
+
+        public Consts16(in SweepParams p)
+        {
+            H = Vector512.Create(p.H); InvH = Vector512.Create(p.InvH); Reaction = Vector512.Create(p.Reaction);
+            FallX = Vector512.Create(p.FallX); FallY = Vector512.Create(p.FallY); FallZ = Vector512.Create(p.FallZ);
+            Eps = Vector512.Create(1e-6f); Flip = Vector512.Create(-0.9999f);
+        }
+    }
+
+    /// <summary><see cref="Sweep"/> on 16-lane vectors.</summary>
+    [SkipLocalsInit]
+    private static void Sweep16(ref float d, ref float rest, int rows, in SweepParams p)
+    {
+        const int width = 16; int lanes = p.Lanes;
+        var c = new Consts16(in p);
+        var one = V.One;
+        var zero = V.Zero;
+        Span<float> stateSpan = stackalloc float[Slots * lanes];
+        ref float s = ref stateSpan[0];
+        for (int h = 0; h < lanes; h += width)
+        {
+            St16(ref s, Sqx * lanes + h, Vector512.Create(p.Qx)); St16(ref s, Sqy * lanes + h, Vector512.Create(p.Qy));
+            St16(ref s, Sqz * lanes + h, Vector512.Create(p.Qz)); St16(ref s, Sqw * lanes + h, Vector512.Create(p.Qw));
+            St16(ref s, Spx * lanes + h, Ld16(ref d, p.Ox + h)); St16(ref s, Spy * lanes + h, Ld16(ref d, p.Oy + h));
+            St16(ref s, Spz * lanes + h, Ld16(ref d, p.Oz + h));
+            // The root's parent is the head, taken as still within a substep.
+            St16(ref s, Sux * lanes + h, c.H * Ld16(ref d, p.Ovx + h)); St16(ref s, Suy * lanes + h, c.H * Ld16(ref d, p.Ovy + h));
+            St16(ref s, Suz * lanes + h, c.H * Ld16(ref d, p.Ovz + h));
+            // Direction, turn and correction start at zero, and the root is never kicked (its free mask is clear).
+            for (int slot = Sdx; slot <= SFree; slot++) St16(ref s, slot * lanes + h, zero);
+        }
+        for (int k = 1; k < rows; k++)
+        {
+            for (int h = 0; h < lanes; h += width)
+            {
+                int r = k * lanes + h;
+                var qx = Ld16(ref s, Sqx * lanes + h); var qy = Ld16(ref s, Sqy * lanes + h); var qz = Ld16(ref s, Sqz * lanes + h); var qw = Ld16(ref s, Sqw * lanes + h);
+                var px = Ld16(ref s, Spx * lanes + h); var py = Ld16(ref s, Spy * lanes + h); var pz = Ld16(ref s, Spz * lanes + h);
+                var x = Ld16(ref d, p.Ox + r); var y = Ld16(ref d, p.Oy + r); var z = Ld16(ref d, p.Oz + r);
+                var free = ~Vector512.Equals(Ld16(ref d, p.Om + r), zero);
+                var rl = Ld16(ref d, p.Ol + r);
+                var rx = Ld16(ref rest, p.Orx + r); var ry = Ld16(ref rest, p.Ory + r); var rz = Ld16(ref rest, p.Orz + r);
+                var ex = x - px; var ey = y - py; var ez = z - pz;
+                var len = Vector512.Sqrt(ex * ex + ey * ey + ez * ez);
+                var hasLen = Vector512.GreaterThan(len, zero);
+                var inv = Sel16(hasLen, one / Sel16(hasLen, len, one), zero);
+                // Target: the rest direction turned by the frame carried from the root (v' = v + 2w(q×v) + 2q×(q×v)).
+                var cx = qy * rz - qz * ry; var cy = qz * rx - qx * rz; var cz = qx * ry - qy * rx;
+                var ccx = qy * cz - qz * cy; var ccy = qz * cx - qx * cz; var ccz = qx * cy - qy * cx;
+                var tx = rx + (qw * cx + ccx) * 2f; var ty = ry + (qw * cy + ccy) * 2f; var tz = rz + (qw * cz + ccz) * 2f;
+                var restOk = Vector512.GreaterThan(rx * rx + ry * ry + rz * rz, zero);
+                tx = Sel16(restOk, tx, Sel16(hasLen, ex * inv, zero));
+                ty = Sel16(restOk, ty, Sel16(hasLen, ey * inv, Vector512.Create(-1f)));
+                tz = Sel16(restOk, tz, Sel16(hasLen, ez * inv, zero));
+                var okLen = Vector512.GreaterThan(len, c.Eps * rl) & hasLen;
+                var dx = Sel16(okLen, ex * inv, tx); var dy = Sel16(okLen, ey * inv, ty); var dz = Sel16(okLen, ez * inv, tz);
+                // How far this segment turned since the substep's start (see BendSystem).
+                var hvx = c.H * Ld16(ref d, p.Ovx + r); var hvy = c.H * Ld16(ref d, p.Ovy + r); var hvz = c.H * Ld16(ref d, p.Ovz + r);
+                var ux = hvx - Ld16(ref s, Sux * lanes + h); var uy = hvy - Ld16(ref s, Suy * lanes + h); var uz = hvz - Ld16(ref s, Suz * lanes + h);
+                var along = ux * dx + uy * dy + uz * dz;
+                var tcx = (ux - along * dx) * inv; var tcy = (uy - along * dy) * inv; var tcz = (uz - along * dz) * inv;
+                // Target turned with the parent: Δt = (d_p × c_p) × t.
+                var pdx = Ld16(ref s, Sdx * lanes + h); var pdy = Ld16(ref s, Sdy * lanes + h); var pdz = Ld16(ref s, Sdz * lanes + h);
+                var pcx = Ld16(ref s, Scx * lanes + h); var pcy = Ld16(ref s, Scy * lanes + h); var pcz = Ld16(ref s, Scz * lanes + h);
+                var wx = pdy * pcz - pdz * pcy; var wy = pdz * pcx - pdx * pcz; var wz = pdx * pcy - pdy * pcx;
+                var ttx = wy * tz - wz * ty; var tty = wz * tx - wx * tz; var ttz = wx * ty - wy * tx;
+                // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
+                var a = Ld16(ref rest, p.Oa + r); var b = Ld16(ref rest, p.Ob + r);
+                var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
+                var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
+                var mx = tx + a * ox + b * sx; var my = ty + a * oy + b * sy; var mz = tz + a * oz + b * sz;
+                var ml = Vector512.Sqrt(mx * mx + my * my + mz * mz);
+                var mOk = Vector512.GreaterThan(ml, c.Eps);
+                var invM = one / Sel16(mOk, ml, one);
+                var ndx = Sel16(mOk, mx * invM, tx); var ndy = Sel16(mOk, my * invM, ty); var ndz = Sel16(mOk, mz * invM, tz);
+                dx = Sel16(free, ndx, dx); dy = Sel16(free, ndy, dy); dz = Sel16(free, ndz, dz);
+                var nx = px + dx * rl; var ny = py + dy * rl; var nz = pz + dz * rl;
+                var cdx = Sel16(free, nx - x, zero); var cdy = Sel16(free, ny - y, zero); var cdz = Sel16(free, nz - z, zero);
+                x += cdx; y += cdy; z += cdz;
+                St16(ref d, p.Ox + r, x); St16(ref d, p.Oy + r, y); St16(ref d, p.Oz + r, z);
+                // The row above takes its kick now that this row's correction is known.
+                Kick16(ref d, in p, in c, r - lanes, (Ld16(ref s, SFree * lanes + h)),
+                    Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h),
+                    cdx + Sel16(free, c.FallX, zero), cdy + Sel16(free, c.FallY, zero), cdz + Sel16(free, c.FallZ, zero));
+                St16(ref s, SDx * lanes + h, cdx); St16(ref s, SDy * lanes + h, cdy); St16(ref s, SDz * lanes + h, cdz);
+                St16(ref s, SFree * lanes + h, free);
+                // This segment's turn over the substep so far, for its child.
+                ux += cdx; uy += cdy; uz += cdz;
+                along = ux * dx + uy * dy + uz * dz;
+                St16(ref s, Scx * lanes + h, (ux - along * dx) * inv); St16(ref s, Scy * lanes + h, (uy - along * dy) * inv);
+                St16(ref s, Scz * lanes + h, (uz - along * dz) * inv);
+                St16(ref s, Sdx * lanes + h, dx); St16(ref s, Sdy * lanes + h, dy); St16(ref s, Sdz * lanes + h, dz);
+                St16(ref s, Sux * lanes + h, hvx + cdx); St16(ref s, Suy * lanes + h, hvy + cdy); St16(ref s, Suz * lanes + h, hvz + cdz);
+                St16(ref s, Spx * lanes + h, x); St16(ref s, Spy * lanes + h, y); St16(ref s, Spz * lanes + h, z);
+                // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
+                var dot = tx * dx + ty * dy + tz * dz;
+                var fx = ty * dz - tz * dy; var fy = tz * dx - tx * dz; var fz = tx * dy - ty * dx; var fw = one + dot;
+                var flip = Vector512.LessThan(dot, c.Flip);
+                fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw);
+                var fInv = one / Vector512.Sqrt(fx * fx + fy * fy + fz * fz + fw * fw);
+                fx *= fInv; fy *= fInv; fz *= fInv; fw *= fInv;
+                var nqx = fw * qx + fx * qw + fy * qz - fz * qy;
+                var nqy = fw * qy - fx * qz + fy * qw + fz * qx;
+                var nqz = fw * qz + fx * qy - fy * qx + fz * qw;
+                var nqw = fw * qw - fx * qx - fy * qy - fz * qz;
+                var qInv = one / Vector512.Sqrt(nqx * nqx + nqy * nqy + nqz * nqz + nqw * nqw);
+                St16(ref s, Sqx * lanes + h, nqx * qInv); St16(ref s, Sqy * lanes + h, nqy * qInv);
+                St16(ref s, Sqz * lanes + h, nqz * qInv); St16(ref s, Sqw * lanes + h, nqw * qInv);
+            }
+        }
+        if (rows < 2) return;
+        for (int h = 0; h < lanes; h += width)
+            Kick16(ref d, in p, in c, (rows - 1) * lanes + h, (Ld16(ref s, SFree * lanes + h)),
+                Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h), zero, zero, zero);
+    }
+
+    /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Kick16(ref float d, in SweepParams p, in Consts16 c, int r, V free, V dx, V dy, V dz, V nx, V ny, V nz)
+    {
+        var vx = Ld16(ref d, p.Ovx + r); var vy = Ld16(ref d, p.Ovy + r); var vz = Ld16(ref d, p.Ovz + r);
+        St16(ref d, p.Ovx + r, Sel16(free, vx + (dx - c.Reaction * nx) * c.InvH, vx));
+        St16(ref d, p.Ovy + r, Sel16(free, vy + (dy - c.Reaction * ny) * c.InvH, vy));
+        St16(ref d, p.Ovz + r, Sel16(free, vz + (dz - c.Reaction * nz) * c.InvH, vz));
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static V Ld16(ref float r, int i) => Vector512.LoadUnsafe(ref r, (nuint)i);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void St16(ref float r, int i, V v) => v.StoreUnsafe(ref r, (nuint)i);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static V Sel16(V mask, V ifTrue, V ifFalse) => Vector512.ConditionalSelect(mask, ifTrue, ifFalse);
+}
