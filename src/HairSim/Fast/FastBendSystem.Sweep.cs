@@ -15,11 +15,11 @@ public sealed partial class FastBendSystem
     /// <summary>Sweep constants broadcast to Vector&lt;float&gt; lanes.</summary>
     private readonly struct Consts
     {
-        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip;
+        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed;
 
         public Consts(in SweepParams p)
         {
-            H = new(p.H); InvH = new(p.InvH); Reaction = new(p.Reaction);
+            H = new(p.H); InvH = new(p.InvH); Reaction = new(p.Reaction); MaxSpeed = new(p.MaxSpeed);
             FallX = new(p.FallX); FallY = new(p.FallY); FallZ = new(p.FallZ);
             Eps = new(1e-6f); Flip = new(-0.9999f);
         }
@@ -143,13 +143,21 @@ public sealed partial class FastBendSystem
                 Simd.Ld(ref s, SDx * lanes + h), Simd.Ld(ref s, SDy * lanes + h), Simd.Ld(ref s, SDz * lanes + h), zero, zero, zero);
     }
 
-    /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>
+    /// <summary>v += (Δ − s·next) / h on the free lanes of row r, then clamped to the speed limit (the sweep writes velocities last).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Kick(ref float d, in SweepParams p, in Consts c, int r, Vector<int> free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
         var vx = Simd.Ld(ref d, p.Ovx + r); var vy = Simd.Ld(ref d, p.Ovy + r); var vz = Simd.Ld(ref d, p.Ovz + r);
-        Simd.St(ref d, p.Ovx + r, Simd.Sel(free, vx + (dx - c.Reaction * nx) * c.InvH, vx));
-        Simd.St(ref d, p.Ovy + r, Simd.Sel(free, vy + (dy - c.Reaction * ny) * c.InvH, vy));
-        Simd.St(ref d, p.Ovz + r, Simd.Sel(free, vz + (dz - c.Reaction * nz) * c.InvH, vz));
+        var wx = vx + (dx - c.Reaction * nx) * c.InvH; var wy = vy + (dy - c.Reaction * ny) * c.InvH; var wz = vz + (dz - c.Reaction * nz) * c.InvH;
+        var speed = Vector.SquareRoot(wx * wx + wy * wy + wz * wz);
+        var over = Vector.GreaterThan(speed, c.MaxSpeed);
+        if (!Vector.EqualsAll(over, Vector<int>.Zero))
+        {
+            var f = c.MaxSpeed / Simd.Sel(over, speed, V.One);
+            wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
+        }
+        Simd.St(ref d, p.Ovx + r, Simd.Sel(free, wx, vx));
+        Simd.St(ref d, p.Ovy + r, Simd.Sel(free, wy, vy));
+        Simd.St(ref d, p.Ovz + r, Simd.Sel(free, wz, vz));
     }
 }

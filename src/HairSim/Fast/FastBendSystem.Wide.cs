@@ -16,11 +16,11 @@ public sealed partial class FastBendSystem
     /// <summary>Sweep constants broadcast to 16 lanes.</summary>
     private readonly struct Consts16
     {
-        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip;
+        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed;
 
         public Consts16(in SweepParams p)
         {
-            H = Vector512.Create(p.H); InvH = Vector512.Create(p.InvH); Reaction = Vector512.Create(p.Reaction);
+            H = Vector512.Create(p.H); InvH = Vector512.Create(p.InvH); Reaction = Vector512.Create(p.Reaction); MaxSpeed = Vector512.Create(p.MaxSpeed);
             FallX = Vector512.Create(p.FallX); FallY = Vector512.Create(p.FallY); FallZ = Vector512.Create(p.FallZ);
             Eps = Vector512.Create(1e-6f); Flip = Vector512.Create(-0.9999f);
         }
@@ -138,9 +138,17 @@ public sealed partial class FastBendSystem
     private static void Kick16(ref float d, in SweepParams p, in Consts16 c, int r, V free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
         var vx = Ld16(ref d, p.Ovx + r); var vy = Ld16(ref d, p.Ovy + r); var vz = Ld16(ref d, p.Ovz + r);
-        St16(ref d, p.Ovx + r, Sel16(free, vx + (dx - c.Reaction * nx) * c.InvH, vx));
-        St16(ref d, p.Ovy + r, Sel16(free, vy + (dy - c.Reaction * ny) * c.InvH, vy));
-        St16(ref d, p.Ovz + r, Sel16(free, vz + (dz - c.Reaction * nz) * c.InvH, vz));
+        var wx = vx + (dx - c.Reaction * nx) * c.InvH; var wy = vy + (dy - c.Reaction * ny) * c.InvH; var wz = vz + (dz - c.Reaction * nz) * c.InvH;
+        var speed = Vector512.Sqrt(wx * wx + wy * wy + wz * wz);
+        var over = Vector512.GreaterThan(speed, c.MaxSpeed);
+        if (over != V.Zero)
+        {
+            var f = c.MaxSpeed / Sel16(over, speed, V.One);
+            wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
+        }
+        St16(ref d, p.Ovx + r, Sel16(free, wx, vx));
+        St16(ref d, p.Ovy + r, Sel16(free, wy, vy));
+        St16(ref d, p.Ovz + r, Sel16(free, wz, vz));
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -65,11 +65,11 @@ public sealed class BendSystem : IHairSystem
         for (int s = begin; s < end; s++)
         {
             EnsureProfile(w, s, st.Sag, _t2, _profileAt, _profileSag);
-            Sweep(w, s, h, damping, st.BendDamping, fall, head);
+            Sweep(w, s, h, damping, st.BendDamping, st.MaxSpeed > 0f ? st.MaxSpeed : double.PositiveInfinity, fall, head);
         }
     }
 
-    private void Sweep(HairWorld w, int s, double h, double damping, double zeta, in Vector3D fall, in RigidTransform head)
+    private void Sweep(HairWorld w, int s, double h, double damping, double zeta, double maxSpeed, in Vector3D fall, in RigidTransform head)
     {
         int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
         var q = new QuatD(head.Rotation);
@@ -144,9 +144,13 @@ public sealed class BendSystem : IHairSystem
         {
             int i = first + k;
             if (w.InvMass[i] == 0f) continue;
-            w.VelX[i] = (float)(w.VelX[i] + (_dx[k] - fall.X - damping * _dx[k + 1]) / h);
-            w.VelY[i] = (float)(w.VelY[i] + (_dy[k] - fall.Y - damping * _dy[k + 1]) / h);
-            w.VelZ[i] = (float)(w.VelZ[i] + (_dz[k] - fall.Z - damping * _dz[k + 1]) / h);
+            double vx = w.VelX[i] + (_dx[k] - fall.X - damping * _dx[k + 1]) / h;
+            double vy = w.VelY[i] + (_dy[k] - fall.Y - damping * _dy[k + 1]) / h;
+            double vz = w.VelZ[i] + (_dz[k] - fall.Z - damping * _dz[k + 1]) / h;
+            // The sweep writes velocities last (collision only takes speed away): the speed limit is a bound here.
+            double speed = Math.Sqrt(vx * vx + vy * vy + vz * vz);
+            if (speed > maxSpeed) { double f = maxSpeed / speed; vx *= f; vy *= f; vz *= f; }
+            w.VelX[i] = (float)vx; w.VelY[i] = (float)vy; w.VelZ[i] = (float)vz;
         }
     }
 

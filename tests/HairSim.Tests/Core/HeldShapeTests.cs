@@ -129,4 +129,25 @@ public class HeldShapeTests(ITestOutputHelper output)
             return d;
         }
     }
+
+    [Theory]
+    [InlineData(SolverPath.Reference)]
+    [InlineData(SolverPath.Fast)]
+    public void TheSpeedLimitBoundsTheVelocityBuffers(SolverPath path)
+    {
+        // A spinning head at 5 turns/s drives hair far past 2 natural speeds (√(g·L) = 1.57 m/s at 25 cm): every
+        // velocity left in the buffers after any frame stays within the limit (collision only takes speed away).
+        var st = new SimulationSettings { Path = path, MaxSpeed = 2f };
+        var scene = GroomBuilder.BuildScene(CanonicalCases.SmallGroom(), st);
+        var sim = new HairSimulation(scene);
+        double limit = st.MaxSpeed * GroomScale.Of(scene.World).NaturalSpeed, fastest = 0;
+        for (int f = 0; f < 60; f++)
+        {
+            sim.Step(1f / 60f, HeadMotion.Spin((f + 1) / 60f, 5f));
+            for (int i = 0; i < scene.World.ParticleCount; i++) fastest = Math.Max(fastest, scene.World.GetVelocity(i).Length());
+        }
+        output.WriteLine($"{path}: fastest {fastest:F3} m/s, limit {limit:F3} m/s");
+        Assert.True(fastest <= limit * (1 + 1e-5), $"{fastest} m/s over the limit of {limit} m/s");
+        Assert.True(fastest > 0.9 * limit, "the spin did not reach the limit, so the test shows nothing");
+    }
 }
