@@ -75,6 +75,18 @@ public static class BenchCommand
             int refWarm = Math.Max(1, Math.Min(warmup, refFrames / 2));
             rows.Add(Frame(name, groom, SolverPath.Reference, SequentialDispatcher.Instance, 1, refWarm, refFrames));
             rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames));
+            if (name.StartsWith("reference", StringComparison.Ordinal))
+            {
+                // Styled hair (the style command's cut, fitted fringe and baked rest pose) against the uncut groom, and the
+                // source's triples (the former default) on both, in the same run: the cost of styles and of holding them.
+                rows.Add(Frame(name, groom, SolverPath.Reference, SequentialDispatcher.Instance, 1, refWarm, refFrames, styled: true));
+                foreach (var (dispatcher, n) in threads > 1 ? new[] { ((IThreadDispatcher)SequentialDispatcher.Instance, 1), (parallel, threads) } : [(SequentialDispatcher.Instance, 1)])
+                {
+                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, styled: true));
+                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, bend: BendModel.SourceTriples));
+                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, bend: BendModel.SourceTriples, styled: true));
+                }
+            }
             // The largest scene's multi-threaded row is the frame-budget target: timed in several rounds, since run time on
             // a shared machine drifts from second to second.
             if (threads > 1) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames, rounds: groom.TotalParticles == maxParticles ? rounds : 1));
@@ -95,12 +107,12 @@ public static class BenchCommand
         if (systems)
         {
             var groom = GroomSettings.Reference();
-            foreach (var system in new[] { HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, LengthSystem.SystemName, CollideSystem.SystemName, InterpolateSystem.SystemName })
+            foreach (var system in new[] { HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, BendSystem.SystemName, LengthSystem.SystemName, CollideSystem.SystemName, InterpolateSystem.SystemName })
             {
                 rows.Add(OneSystem(groom, system, SolverPath.Reference, SequentialDispatcher.Instance, 1, Math.Max(3, frames / 4)));
                 rows.Add(OneSystem(groom, system, SolverPath.Fast, SequentialDispatcher.Instance, 1, frames));
                 if (threads > 1) rows.Add(OneSystem(groom, system, SolverPath.Fast, parallel, threads, frames));
-                if (FastPathInfo.Avx512 && system is ShapeMatchSystem.SystemName or IntegrateSystem.SystemName or LengthSystem.SystemName or CollideSystem.SystemName)
+                if (FastPathInfo.Avx512 && system is ShapeMatchSystem.SystemName or IntegrateSystem.SystemName or BendSystem.SystemName or LengthSystem.SystemName or CollideSystem.SystemName)
                     rows.Add(OneSystem(groom, system, SolverPath.Fast, SequentialDispatcher.Instance, 1, frames, allowAvx512: false));
             }
         }
@@ -114,17 +126,20 @@ public static class BenchCommand
         return 0;
     }
 
-    private static HairScene Scene(GroomSettings groom, SolverPath path)
+    private static HairScene Scene(GroomSettings groom, SolverPath path, BendModel bend = BendModel.RestShape)
     {
-        var settings = new SimulationSettings { Path = path };
+        var settings = new SimulationSettings { Path = path, Bend = bend };
         return GroomBuilder.BuildScene(groom, settings);
     }
 
+    /// <param name="bend">The bend model (the default's, or the source's triples: the former default, for before/after in one run).</param>
+    /// <param name="styled">Style the scene first as the style command does (settle, bake the rest pose, chin-height cut, fitted fringe curl).</param>
     private static Row Frame(string name, GroomSettings groom, SolverPath path, IThreadDispatcher dispatcher, int threads, int warmup, int frames,
-        bool allowAvx512 = true, int rounds = 1)
+        bool allowAvx512 = true, int rounds = 1, BendModel bend = BendModel.RestShape, bool styled = false)
     {
-        var scene = Scene(groom, path);
+        var scene = Scene(groom, path, bend);
         var sim = new HairSimulation(scene, PipelineBuilder.CreateDefault(allowAvx512), dispatcher);
+        if (styled) new StyleCommand.Script(groom).StyleAll(sim);
         float dt = 1f / 60f;
         int f = 0;
         // At least `warmup` frames and, for the fast path, 1.5 s: the JIT recompiles hot methods with full optimisation
@@ -151,8 +166,9 @@ public static class BenchCommand
             roundMedians[r] = round[frames / 2];
         }
         if (scene.World.CountNonFinite() != 0) throw new InvalidDataException($"{name} ({path}) produced non-finite values.");
-        var row = Summarise(name, "frame", path, threads, scene, times, bytes, times.Length) with { RoundMedians = rounds > 1 ? roundMedians : [] };
+        var row = Summarise(styled ? name + ", styled" : name, "frame", path, threads, scene, times, bytes, times.Length) with { RoundMedians = rounds > 1 ? roundMedians : [] };
         if (!allowAvx512) row = row with { Path = "fast, 8-lane" };
+        if (bend == BendModel.SourceTriples) row = row with { Path = row.Path + ", source's triples" };
         Console.Error.WriteLine($"{name,-22} {Label(row),-18} {row.MedianMs,9:F3} ms/frame");
         return row;
     }
@@ -198,7 +214,8 @@ public static class BenchCommand
     private static Row OneSystem(GroomSettings groom, string system, SolverPath path, IThreadDispatcher dispatcher, int threads, int frames,
         bool allowAvx512 = true)
     {
-        var scene = Scene(groom, path);
+        // Shape matching and the separate length pass belong to the source's scheme (the default bend sweep has the length fused in).
+        var scene = Scene(groom, path, system is ShapeMatchSystem.SystemName or LengthSystem.SystemName ? BendModel.SourceTriples : BendModel.RestShape);
         if (system == InterpolateSystem.SystemName) scene.Render = new RenderSettings(); // one render strand per gap, the default
         // A moving state: one second of the full simulation with a shaking head, then the system alone from there.
         var warm = new HairSimulation(scene, dispatcher: dispatcher);
@@ -273,7 +290,8 @@ public static class BenchCommand
         sb.AppendLine($"- Runtime: {RuntimeInformation.FrameworkDescription}, SIMD width {System.Numerics.Vector<float>.Count} floats (Vector<float>), hardware acceleration {System.Numerics.Vector.IsHardwareAccelerated}");
         sb.AppendLine($"- Date: {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC");
         sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ substeps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn), timed in the same simulation as chunks on, alternating blocks of 10 frames: before/after in one run.");
-        sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world), each frame starting from the same warm state (1 s of shaking), on the reference scene. Interpolate is the render interpolation, once per frame (the scene gets default render settings: one render strand between neighbours, 549,840 render points); the whole-frame rows have no render strands (docs/leave-out.md times frames with them).");
+        sb.AppendLine("- Rows \"…, styled\": the reference scene styled as the style command does (1 s settle, rest pose baked, chin-height cut through every layer, a curl fitted to the 1,035-strand fringe), timed from there. Rows \"fast, source's triples\": the same hair with the source's triple shape matching and a separate follow-the-leader pass (BendModel.SourceTriples, the default before the rest-shape model), in the same run.");
+        sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world; ShapeMatch and Length on the source's scheme, whose systems they are), each frame starting from the same warm state (1 s of shaking), on the reference scene. Interpolate is the render interpolation, once per frame (the scene gets default render settings: one render strand between neighbours, 549,840 render points); the whole-frame rows have no render strands (docs/leave-out.md times frames with them).");
         sb.AppendLine("- All rows come from one run on a shared machine (other builds may run at the same time): compare rows within the table, and rerun for absolute numbers.");
         sb.AppendLine();
         sb.Append(table);
@@ -289,6 +307,15 @@ public static class BenchCommand
             var wide = rows.Find(r => r.Scene == narrow.Scene && r.Part == narrow.Part && r.Path == "fast" && r.Threads == narrow.Threads);
             if (wide != null)
                 sb.AppendLine(string.Create(Inv, $"16-lane (AVX-512) paths vs the same fast path kept to 8 lanes, {(narrow.Part == "frame" ? narrow.Scene : $"{narrow.Part} alone")}, {narrow.Threads} thread{(narrow.Threads == 1 ? "" : "s")}: {narrow.MedianMs:F2} → {wide.MedianMs:F2} ms/frame (**{narrow.MedianMs / wide.MedianMs:F2}×**)."));
+        }
+        foreach (int n in threads > 1 ? new[] { 1, threads } : [1])
+        {
+            Row? Find(string scene, string p) => rows.Find(r => r.Scene == scene && r.Part == "frame" && r.Path == p && r.Threads == n);
+            const string Ref = "reference 435×40×16";
+            var plain = Find(Ref, "fast"); var styledRow = Find(Ref + ", styled", "fast");
+            var source = Find(Ref, "fast, source's triples"); var sourceStyled = Find(Ref + ", styled", "fast, source's triples");
+            if (plain != null && styledRow != null && source != null && sourceStyled != null)
+                sb.AppendLine(string.Create(Inv, $"Styled vs uncut, {n} thread{(n == 1 ? "" : "s")}: the default bend model {plain.MedianMs:F2} → {styledRow.MedianMs:F2} ms/frame styled (**{styledRow.MedianMs / plain.MedianMs:F2}×**); the source's triples (the former default) {source.MedianMs:F2} → {sourceStyled.MedianMs:F2} ms/frame (**{sourceStyled.MedianMs / source.MedianMs:F2}×**). The default model against the former default on the uncut groom: **{plain.MedianMs / source.MedianMs:F2}×**, styled: **{styledRow.MedianMs / source.MedianMs:F2}×** (target for styled and uncut: at most 1.3× the former default uncut)."));
         }
         foreach (var (on, off) in chunkPairs)
             sb.AppendLine(string.Create(Inv, $"Strand chunks vs the same fast path system by system, {off.Scene}, {off.Threads} thread{(off.Threads == 1 ? "" : "s")}, interleaved in one simulation (blocks of 10 frames, {off.Frames} each): {off.MedianMs:F2} → {on.MedianMs:F2} ms/frame (**{off.MedianMs / on.MedianMs:F2}×**)."));

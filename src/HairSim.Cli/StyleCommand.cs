@@ -39,6 +39,7 @@ public static class StyleCommand
         var w = scene.World;
         using var dispatcher = ThreadDispatchers.CreateDefault();
         var sim = new HairSimulation(scene, dispatcher: dispatcher);
+        var script = new Script(groom);
         Console.WriteLine($"scene: {w.SheetCount} sheets × {groom.StrandsPerSheet} strands × {groom.ParticlesPerStrand} particles = {w.StrandCount:N0} strands; bend model {settings.Bend}, Sag {settings.Sag.ToString(Ci)}; global shape stiffness {stiffness.ToString(Ci)}");
         Simulate(sim, settle, "settling");
         var history = new EditHistory();
@@ -48,40 +49,22 @@ public static class StyleCommand
         settings.GlobalShapeStiffness = stiffness;
         scene.SettingsChanged();
 
-        var front = StrokeCamera.LookAtOrthographic(new Vector3(0, -0.1f, 2f), new Vector3(0, -0.1f, 0), Vector3.UnitY, 0.7f, new Vector2(800, 800));
-        var side = StrokeCamera.LookAtOrthographic(new Vector3(-2f, -0.05f, 0), new Vector3(0, -0.05f, 0), Vector3.UnitY, 0.5f, new Vector2(800, 800));
-        // A bob: a horizontal stroke across the whole picture at chin height (bottom of the head ellipsoid), through all layers.
-        var chin = ScreenOf(front, new Vector3(0, groom.HeadCenter.Y - groom.HeadRadii.Y, 0));
-        var cutStroke = new Stroke([new Vector2(5, chin.Y), new Vector2(795, chin.Y)], front);
-        var cutOptions = new CutOptions { Reach = CutReach.AllThrough, MinRemainingLength = 0.02f };
-        if (bench) return Bench(scene, history, cutStroke, cutOptions, runs);
+        if (bench) return Bench(scene, history, script.CutStroke, script.CutOptions, runs);
 
         Directory.CreateDirectory(outDir);
-        var fringeArea = SelectionArea.Rectangle(ScreenOf(side, new Vector3(0, 0.075f, 0.055f)), ScreenOf(side, new Vector3(0, 0.02f, 0.12f)));
-        var fringe = HairEditor.Select(scene, side, fringeArea, new SelectionOptions { RootsOnly = true });
+        var fringe = script.Fringe(scene);
         var mask = fringe.Mask.ToArray();
         Svg(outDir, "before", scene, mask);
 
         var sw = Stopwatch.StartNew();
-        var cut = HairEditor.Cut(scene, cutStroke, cutOptions);
+        var cut = HairEditor.Cut(scene, script.CutStroke, script.CutOptions);
         double cutMs = sw.Elapsed.TotalMilliseconds;
         history.Do(cut);
         Console.WriteLine(string.Create(Ci, $"cut: {cut.Strands.Count:N0} strands cut at chin height (plan {cutMs:F1} ms, undo memory {cut.MemoryBytes / 1e6:F1} MB)"));
 
-        if (fringe.Count == 0) throw new ArgumentException("The fringe selection is empty; the scripted fit needs the reference head.");
         var key = KeyCurve.FromStrands(w, fringe.Strands);
-        var root = key.Root;
-        // A curl in the side view: forward and down from the hairline, then a 2.5 cm loop turned 1.5 times.
-        var curl = new List<Vector2> { ScreenOf(side, root) };
-        var start = root + new Vector3(0, -0.02f, 0.03f);
-        var centre = start + new Vector3(0, -0.025f, 0);
-        for (int k = 0; k <= 120; k++)
-        {
-            float t = 1.5f * 2 * MathF.PI * k / 120;
-            curl.Add(ScreenOf(side, centre + 0.025f * new Vector3(0, MathF.Cos(t), MathF.Sin(t))));
-        }
         sw.Restart();
-        var fit = HairEditor.Fit(scene, fringe, new Stroke(curl, side));
+        var fit = script.Fit(scene, fringe);
         double fitMs = sw.Elapsed.TotalMilliseconds;
         history.Do(fit);
         Console.WriteLine(string.Create(Ci, $"fit: {fringe.Count:N0} fringe strands fitted to a curl stroke (plan {fitMs:F1} ms, key curve {key.Length * 100:F1} cm, stroke {fit.StrokeLength * 100:F1} cm{(fit.Extended ? ", extended straight" : "")})"));
@@ -110,6 +93,60 @@ public static class StyleCommand
         Console.WriteLine($"hairstyle file reloads bit-exact: {reloaded.World.BitEquals(w)}");
         Svg(outDir, "after", scene, mask);
         return m.NonFinite == 0 && reloaded.World.BitEquals(w) ? 0 : 3;
+    }
+
+    /// <summary>
+    /// The scripted style on a groom of the reference head's proportions: a chin-height cut through every layer (front
+    /// view) and a curl fitted to the fringe (side view). The bench styles the reference scene with it too.
+    /// </summary>
+    public sealed class Script
+    {
+        private readonly StrokeCamera _front, _side;
+
+        public Script(GroomSettings groom)
+        {
+            _front = StrokeCamera.LookAtOrthographic(new Vector3(0, -0.1f, 2f), new Vector3(0, -0.1f, 0), Vector3.UnitY, 0.7f, new Vector2(800, 800));
+            _side = StrokeCamera.LookAtOrthographic(new Vector3(-2f, -0.05f, 0), new Vector3(0, -0.05f, 0), Vector3.UnitY, 0.5f, new Vector2(800, 800));
+            // A bob: a horizontal stroke across the whole picture at chin height (bottom of the head ellipsoid), through all layers.
+            var chin = ScreenOf(_front, new Vector3(0, groom.HeadCenter.Y - groom.HeadRadii.Y, 0));
+            CutStroke = new Stroke([new Vector2(5, chin.Y), new Vector2(795, chin.Y)], _front);
+        }
+
+        public Stroke CutStroke { get; }
+        public CutOptions CutOptions { get; } = new() { Reach = CutReach.AllThrough, MinRemainingLength = 0.02f };
+
+        /// <summary>The fringe: roots in a box over the forehead, seen from the side.</summary>
+        public StrandSelection Fringe(HairScene scene)
+        {
+            var area = SelectionArea.Rectangle(ScreenOf(_side, new Vector3(0, 0.075f, 0.055f)), ScreenOf(_side, new Vector3(0, 0.02f, 0.12f)));
+            var fringe = HairEditor.Select(scene, _side, area, new SelectionOptions { RootsOnly = true });
+            if (fringe.Count == 0) throw new ArgumentException("The fringe selection is empty; the scripted fit needs the reference head.");
+            return fringe;
+        }
+
+        /// <summary>A curl in the side view: forward and down from the hairline, then a 2.5 cm loop turned 1.5 times.</summary>
+        public FitCommand Fit(HairScene scene, StrandSelection fringe)
+        {
+            var root = KeyCurve.FromStrands(scene.World, fringe.Strands).Root;
+            var curl = new List<Vector2> { ScreenOf(_side, root) };
+            var centre = root + new Vector3(0, -0.02f, 0.03f) + new Vector3(0, -0.025f, 0);
+            for (int k = 0; k <= 120; k++)
+            {
+                float t = 1.5f * 2 * MathF.PI * k / 120;
+                curl.Add(ScreenOf(_side, centre + 0.025f * new Vector3(0, MathF.Cos(t), MathF.Sin(t))));
+            }
+            return HairEditor.Fit(scene, fringe, new Stroke(curl, _side));
+        }
+
+        /// <summary>Settle (1 s), bake the rest pose, cut and fit: the styled reference scene of the bench.</summary>
+        public void StyleAll(HairSimulation sim)
+        {
+            for (int f = 0; f < 60; f++) sim.Step(1f / 60f);
+            var scene = sim.Scene;
+            HairEditor.BakeRestPose(scene).Apply();
+            HairEditor.Cut(scene, CutStroke, CutOptions).Apply();
+            Fit(scene, Fringe(scene)).Apply();
+        }
     }
 
     private static Vector2 ScreenOf(StrokeCamera cam, Vector3 p)
