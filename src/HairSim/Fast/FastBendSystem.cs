@@ -114,25 +114,40 @@ public sealed partial class FastBendSystem : IHairSystem
         for (int s0 = begin; s0 < end; s0 += lanes)
         {
             int used = Math.Min(lanes, end - s0), rows = 0;
-            bool uniform = used == lanes && Transpose.Available;
+            // Transposed in and out: a full group of strands of one capacity (a multiple of 8) laid back to back, as a
+            // groom is, cut or not. Particles past a cut are masked (InvMass 0 in the tile): they are swept as pins,
+            // never moved, and written back as they were, so cut hair stays on the transposed path.
+            int cap = w.StrandCapacity[s0];
+            bool layout = used == lanes && Transpose.Available && cap % 8 == 0;
+            bool cut = false;
             for (int l = 0; l < lanes; l++)
             {
                 firsts[l] = l < used ? w.StrandFirst[s0 + l] : 0;
                 counts[l] = l < used ? w.StrandParticleCount[s0 + l] : 0;
                 rows = Math.Max(rows, counts[l]);
-                if (l < used) uniform &= counts[l] == w.StrandCapacity[s0 + l];
+                if (l < used) { layout &= w.StrandCapacity[s0 + l] == cap && firsts[l] == firsts[0] + l * cap; cut |= counts[l] != cap; }
             }
-            // Uniform: whole strands of one capacity (a multiple of 8), back to back.
-            uniform &= rows % 8 == 0 && counts[0] == rows;
-            for (int l = 1; uniform && l < lanes; l++) uniform = counts[l] == rows && firsts[l] == firsts[0] + l * rows;
-            if (uniform) GatherUniform(w, t, firsts[0], rows, lanes);
+            if (layout)
+            {
+                rows = cap;
+                GatherUniform(w, t, firsts[0], rows, lanes);
+                if (cut) MaskPastCuts(t, counts, rows, lanes);
+            }
             else Gather(w, t, firsts, counts, rows);
             ref float d = ref t.Data[0];
             if (UsesWide) Sweep16(ref d, ref d, rows, in p);
             else Sweep(ref d, ref d, rows, in p);
-            if (uniform) ScatterUniform(w, t, firsts[0], rows, lanes);
+            if (layout) ScatterUniform(w, t, firsts[0], rows, lanes);
             else Scatter(w, t, firsts, counts);
         }
+    }
+
+    /// <summary>Rows past each lane's live count become pins (InvMass 0): swept but never moved or kicked.</summary>
+    private static void MaskPastCuts(scoped StrandScratch t, ReadOnlySpan<int> counts, int rows, int lanes)
+    {
+        ref float m = ref t.Data[t.Offset(TM)];
+        for (int l = 0; l < lanes; l++)
+            for (int k = counts[l]; k < rows; k++) Unsafe.Add(ref m, k * lanes + l) = 0f;
     }
 
     /// <summary>Any group: masked cells are zeroed (InvMass 0, never moved, finite), then live cells copied one by one.</summary>
