@@ -296,7 +296,7 @@ public static class BenchCommand
         sb.AppendLine();
         sb.Append(table);
         sb.AppendLine();
-        var refFast = rows.Find(r => r.Scene.StartsWith("reference", StringComparison.Ordinal) && r.Part == "frame" && r.Path == "fast" && r.Threads == threads);
+        var refFast = rows.Find(r => r.Scene == "reference 435×40×16" && r.Part == "frame" && r.Path == "fast" && r.Threads == threads);
         var big = rows.FindAll(r => r.Part == "frame" && r.Path == "fast" && r.Threads == threads).OrderByDescending(r => r.Particles).FirstOrDefault();
         if (refFast != null)
             sb.AppendLine(string.Create(Inv, $"Target 1 — reference scene well under 1 ms per step on {threads} threads: **{refFast.MsPerStep:F3} ms/step** ({refFast.MedianMs:F2} ms per 4-substep frame)."));

@@ -145,10 +145,11 @@ public static class LeaveOutCommand
             sb.Append(".\n");
         }
         sb.Append("""
-            - Where the kept system has nothing to do it returns at once (length with `LengthMode.None`, collide with no
-              collider), so leaving it out saves only a pass over nothing, within this machine's noise; what such a
-              scene saves is the work itself, in the column against the game character. Where the kept system would
-              still work for nothing (render interpolation that nobody draws, shape matching at α = 0), leaving it out
+            - Where the kept system has nothing to do it returns at once (the bend sweep under another bend model, the
+              length pass when the bend sweep keeps lengths itself or with `LengthMode.None`, collide with no collider),
+              so leaving it out saves only a pass over nothing, within this machine's noise; what such a scene saves is
+              the work itself, in the column against the game character. Where the kept system would still work for
+              nothing (render interpolation that nobody draws, the source's shape matching at α = 0), leaving it out
               saves that work outright.
 
 
@@ -157,16 +158,17 @@ public static class LeaveOutCommand
     }
 
     private const string Method = """
-        Each scene is the reference groom (435 sheets × 40 strands × 16 particles, default settings: Müller α = 1,
-        4 substeps, follow-the-leader, 60 Hz) with the head shaking (±40° at 1.5 Hz), minus what its row takes away.
+        Each scene is the reference groom (435 sheets × 40 strands × 16 particles, default settings: the rest-shape bend
+        model with its lengths kept in the same sweep, 4 substeps, 60 Hz) with the head shaking (±40° at 1.5 Hz), minus
+        what its row takes away.
         It is simulated twice:
         - **lean**: the default pipeline builder, which keeps only the systems whose data the scene has
           (`PipelineBuilder`, listed by `HairPipeline.SystemNames`);
         - **every system kept**: the same hair with every core system in the pipeline anyway
           (`LeaveOutCase.KeepEverything`), and render strands computed that nothing reads. A kept system still does
-          its work: shape matching at α = 0 computes every goal and moves nothing, the length system with
-          `LengthMode.None` and the collide system with no collider return at once, interpolation fills render
-          strands.
+          its work: the source's shape matching (α = 0 outside its own model) computes every goal and moves nothing;
+          the bend sweep under another bend model, the length pass whose work the bend sweep already did, and the
+          collide system with no collider return at once; interpolation fills render strands.
 
         Both give the same particle bits (`LeaveOutCasesTests`, every case, both solver paths), so the difference in
         time is what leaving out saves, and nothing else changes. All simulations of one thread count are stepped in
