@@ -39,7 +39,13 @@ public static class RunCommand
         var sim = new HairSimulation(scene, dispatcher: dispatcher);
         Console.WriteLine($"HairSheet reference scene: {w.SheetCount} sheets × {groom.StrandsPerSheet} strands × {groom.ParticlesPerStrand} particles = {w.StrandCount:N0} strands, {w.ParticleCount:N0} particles (built in {build.Elapsed.TotalMilliseconds:F0} ms)");
         Console.WriteLine($"pipeline ({settings.Path}, {dispatcher.ThreadCount} thread(s)): {string.Join(" → ", sim.Pipeline.SystemNames)}");
-        Console.WriteLine($"settings: {hz} Hz, {settings.Substeps} substeps, α = {settings.Alpha}, length pass {settings.Length}, damping {settings.Damping}/s");
+        string model = settings.Bend switch
+        {
+            BendModel.RestShape => $"bend model RestShape (Sag {settings.Sag}: a horizontal strand's tip sags {settings.Sag * 100:0.##} % of its length under 1 g; lengths kept by the bend sweep)",
+            BendModel.SourceTriples => $"bend model SourceTriples (α = {settings.Alpha}, length pass {settings.Length})",
+            _ => $"bend model Limp (length pass {settings.Length})",
+        };
+        Console.WriteLine($"settings: {hz} Hz, {settings.Substeps} substeps, {model}, damping {settings.Damping} per natural time √(L/1 g)");
 
         int frames = (int)Math.Ceiling(seconds * hz);
         float dt = 1f / hz;

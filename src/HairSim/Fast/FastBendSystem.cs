@@ -191,54 +191,17 @@ public sealed partial class FastBendSystem : IHairSystem
     /// <summary>Whole strands of one capacity (a multiple of 8), back to back: every field by SIMD transposes.</summary>
     private void GatherUniform(HairWorld w, scoped StrandScratch t, int first, int rows, int lanes)
     {
-        TransposeIn(w.PosX, first, rows, t, TX, lanes); TransposeIn(w.PosY, first, rows, t, TY, lanes); TransposeIn(w.PosZ, first, rows, t, TZ, lanes);
-        TransposeIn(w.VelX, first, rows, t, TVx, lanes); TransposeIn(w.VelY, first, rows, t, TVy, lanes); TransposeIn(w.VelZ, first, rows, t, TVz, lanes);
-        TransposeIn(w.InvMass, first, rows, t, TM, lanes); TransposeIn(w.RestLength, first, rows, t, TL, lanes);
-        TransposeIn(_restX, first, rows, t, TRx, lanes); TransposeIn(_restY, first, rows, t, TRy, lanes); TransposeIn(_restZ, first, rows, t, TRz, lanes);
-        TransposeIn(_jointA, first, rows, t, TA, lanes); TransposeIn(_jointB, first, rows, t, TB, lanes);
+        Transpose.StrandsIn(w.PosX, first, rows, t, TX, lanes); Transpose.StrandsIn(w.PosY, first, rows, t, TY, lanes); Transpose.StrandsIn(w.PosZ, first, rows, t, TZ, lanes);
+        Transpose.StrandsIn(w.VelX, first, rows, t, TVx, lanes); Transpose.StrandsIn(w.VelY, first, rows, t, TVy, lanes); Transpose.StrandsIn(w.VelZ, first, rows, t, TVz, lanes);
+        Transpose.StrandsIn(w.InvMass, first, rows, t, TM, lanes); Transpose.StrandsIn(w.RestLength, first, rows, t, TL, lanes);
+        Transpose.StrandsIn(_restX, first, rows, t, TRx, lanes); Transpose.StrandsIn(_restY, first, rows, t, TRy, lanes); Transpose.StrandsIn(_restZ, first, rows, t, TRz, lanes);
+        Transpose.StrandsIn(_jointA, first, rows, t, TA, lanes); Transpose.StrandsIn(_jointB, first, rows, t, TB, lanes);
     }
 
     private static void ScatterUniform(HairWorld w, scoped StrandScratch t, int first, int rows, int lanes)
     {
-        TransposeOut(t, TX, w.PosX, first, rows, lanes); TransposeOut(t, TY, w.PosY, first, rows, lanes); TransposeOut(t, TZ, w.PosZ, first, rows, lanes);
-        TransposeOut(t, TVx, w.VelX, first, rows, lanes); TransposeOut(t, TVy, w.VelY, first, rows, lanes); TransposeOut(t, TVz, w.VelZ, first, rows, lanes);
-    }
-
-    /// <summary>Strand l's particles (rows of length <paramref name="rows"/> from <paramref name="first"/>) into tile column l.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void TransposeIn(float[] src, int first, int rows, scoped StrandScratch t, int field, int lanes)
-    {
-        ref float d = ref t.Data[t.Offset(field)];
-        if (rows == 16)
-        {
-            // The common strand length: 16 × 16 blocks with constant strides (in registers with AVX-512, whose tile is 32 lanes).
-            if (lanes == 32) for (int g = 0; g < lanes; g += 16) Transpose.In16Wide(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
-            else for (int g = 0; g < lanes; g += 16) Transpose.In16(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
-            return;
-        }
-        for (int g = 0; g < lanes; g += 8)
-        {
-            ref float s = ref Simd.At(src, first + g * rows);
-            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c), rows, ref Unsafe.Add(ref d, c * lanes + g), lanes);
-        }
-    }
-
-    /// <summary>Tile column l back to strand l's particles.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows, int lanes)
-    {
-        ref float s = ref t.Data[t.Offset(field)];
-        if (rows == 16)
-        {
-            if (lanes == 32) for (int g = 0; g < lanes; g += 16) Transpose.Out16Wide(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
-            else for (int g = 0; g < lanes; g += 16) Transpose.Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
-            return;
-        }
-        for (int g = 0; g < lanes; g += 8)
-        {
-            ref float d = ref Simd.At(dst, first + g * rows);
-            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows);
-        }
+        Transpose.StrandsOut(t, TX, w.PosX, first, rows, lanes); Transpose.StrandsOut(t, TY, w.PosY, first, rows, lanes); Transpose.StrandsOut(t, TZ, w.PosZ, first, rows, lanes);
+        Transpose.StrandsOut(t, TVx, w.VelX, first, rows, lanes); Transpose.StrandsOut(t, TVy, w.VelY, first, rows, lanes); Transpose.StrandsOut(t, TVz, w.VelZ, first, rows, lanes);
     }
 
     /// <summary>

@@ -94,8 +94,8 @@ public sealed partial class FastLengthSystem : IHairSystem
         if (uniform)
         {
             int first = firsts[0];
-            TransposeIn(w.PosX, first, rows, t, TX, width); TransposeIn(w.PosY, first, rows, t, TY, width); TransposeIn(w.PosZ, first, rows, t, TZ, width);
-            TransposeIn(w.InvMass, first, rows, t, TM, width); TransposeIn(w.RestLength, first, rows, t, TL, width);
+            Transpose.StrandsIn(w.PosX, first, rows, t, TX, width); Transpose.StrandsIn(w.PosY, first, rows, t, TY, width); Transpose.StrandsIn(w.PosZ, first, rows, t, TZ, width);
+            Transpose.StrandsIn(w.InvMass, first, rows, t, TM, width); Transpose.StrandsIn(w.RestLength, first, rows, t, TL, width);
             ClearRootKick(t, width);
             return;
         }
@@ -126,9 +126,9 @@ public sealed partial class FastLengthSystem : IHairSystem
         if (uniform)
         {
             int first = firsts[0];
-            TransposeOut(t, TX, w.PosX, first, rows, width); TransposeOut(t, TY, w.PosY, first, rows, width); TransposeOut(t, TZ, w.PosZ, first, rows, width);
-            TransposeOut(t, TVx, w.VelX, first, rows, width, add: true); TransposeOut(t, TVy, w.VelY, first, rows, width, add: true);
-            TransposeOut(t, TVz, w.VelZ, first, rows, width, add: true);
+            Transpose.StrandsOut(t, TX, w.PosX, first, rows, width); Transpose.StrandsOut(t, TY, w.PosY, first, rows, width); Transpose.StrandsOut(t, TZ, w.PosZ, first, rows, width);
+            Transpose.StrandsOut(t, TVx, w.VelX, first, rows, width, add: true); Transpose.StrandsOut(t, TVy, w.VelY, first, rows, width, add: true);
+            Transpose.StrandsOut(t, TVz, w.VelZ, first, rows, width, add: true);
             return;
         }
         ref float dd = ref t.Data[0];
@@ -144,52 +144,6 @@ public sealed partial class FastLengthSystem : IHairSystem
                 Unsafe.Add(ref px, i) = Unsafe.Add(ref dd, ox + r); Unsafe.Add(ref py, i) = Unsafe.Add(ref dd, oy + r); Unsafe.Add(ref pz, i) = Unsafe.Add(ref dd, oz + r);
                 Unsafe.Add(ref vx, i) += Unsafe.Add(ref dd, ovx + r); Unsafe.Add(ref vy, i) += Unsafe.Add(ref dd, ovy + r); Unsafe.Add(ref vz, i) += Unsafe.Add(ref dd, ovz + r);
             }
-        }
-    }
-
-    /// <summary>Strand l's particles (rows of length <paramref name="rows"/> from <paramref name="first"/>) into tile column l, 8 strands at a time.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void TransposeIn(float[] src, int first, int rows, scoped StrandScratch t, int field, int lanes)
-    {
-        ref float d = ref t.Data[t.Offset(field)];
-        if (rows == 16)
-        {
-            // The common strand length: constant strides let the JIT fold every row address into the instruction.
-            // A 32-lane tile exists only with AVX-512, which transposes 16 × 16 in registers.
-            if (lanes == 32) for (int g = 0; g < lanes; g += 16) Transpose.In16Wide(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
-            else for (int g = 0; g < lanes; g += 16) Transpose.In16(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
-            return;
-        }
-        for (int g = 0; g < lanes; g += 8)
-        {
-            ref float s = ref Simd.At(src, first + g * rows);
-            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c), rows, ref Unsafe.Add(ref d, c * lanes + g), lanes);
-        }
-    }
-
-    /// <summary>Tile column l back to strand l's particles, 8 strands at a time; with add, added to them (velocity changes).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void TransposeOut(scoped StrandScratch t, int field, float[] dst, int first, int rows, int lanes, bool add = false)
-    {
-        ref float s = ref t.Data[t.Offset(field)];
-        if (rows == 16)
-        {
-            for (int g = 0; g < lanes; g += 16)
-            {
-                if (lanes == 32)
-                {
-                    if (add) Transpose.Out16Wide(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: true);
-                    else Transpose.Out16Wide(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
-                }
-                else if (add) Transpose.Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: true);
-                else Transpose.Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
-            }
-            return;
-        }
-        for (int g = 0; g < lanes; g += 8)
-        {
-            ref float d = ref Simd.At(dst, first + g * rows);
-            for (int c = 0; c < rows; c += 8) Transpose.Block8(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows, add);
         }
     }
 

@@ -156,4 +156,52 @@ internal static class Transpose
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void St(ref float r, int i, Vector256<float> v) =>
         Unsafe.WriteUnaligned(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)), v);
+
+    // ---- strands ⇄ tiles (FastLengthSystem, FastBendSystem) ----
+
+    /// <summary>Strand l's particles (rows of length <paramref name="rows"/> from <paramref name="first"/>) into tile column l, 8 strands at a time.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    internal static void StrandsIn(float[] src, int first, int rows, scoped StrandScratch t, int field, int lanes)
+    {
+        ref float d = ref t.Data[t.Offset(field)];
+        if (rows == 16)
+        {
+            // The common strand length: constant strides let the JIT fold every row address into the instruction.
+            // A 32-lane tile exists only with AVX-512, which transposes 16 × 16 in registers.
+            if (lanes == 32) for (int g = 0; g < lanes; g += 16) In16Wide(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
+            else for (int g = 0; g < lanes; g += 16) In16(ref Simd.At(src, first + g * 16), ref Unsafe.Add(ref d, g), lanes);
+            return;
+        }
+        for (int g = 0; g < lanes; g += 8)
+        {
+            ref float s = ref Simd.At(src, first + g * rows);
+            for (int c = 0; c < rows; c += 8) Block8(ref Unsafe.Add(ref s, c), rows, ref Unsafe.Add(ref d, c * lanes + g), lanes);
+        }
+    }
+
+    /// <summary>Tile column l back to strand l's particles, 8 strands at a time; with add, added to them (velocity changes).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    internal static void StrandsOut(scoped StrandScratch t, int field, float[] dst, int first, int rows, int lanes, bool add = false)
+    {
+        ref float s = ref t.Data[t.Offset(field)];
+        if (rows == 16)
+        {
+            for (int g = 0; g < lanes; g += 16)
+            {
+                if (lanes == 32)
+                {
+                    if (add) Out16Wide(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: true);
+                    else Out16Wide(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
+                }
+                else if (add) Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: true);
+                else Out16(ref Unsafe.Add(ref s, g), lanes, ref Simd.At(dst, first + g * 16), add: false);
+            }
+            return;
+        }
+        for (int g = 0; g < lanes; g += 8)
+        {
+            ref float d = ref Simd.At(dst, first + g * rows);
+            for (int c = 0; c < rows; c += 8) Block8(ref Unsafe.Add(ref s, c * lanes + g), lanes, ref Unsafe.Add(ref d, c), rows, add);
+        }
+    }
 }
