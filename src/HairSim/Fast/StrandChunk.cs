@@ -22,7 +22,9 @@ internal readonly ref struct StrandChunk
         // From here on the length tile's PBD-only fields are reused (a chunk never runs PBD).
         VelX = 8, VelY = 9, VelZ = 10, ShapePrev = 11, ShapeMid = 12, ShapeNext = 13, RestX = 14, RestY = 15, RestZ = 16,
         /// <summary>Shape-matching goals (prev, mid, next) × xyz, rows −1 … 16 (see <see cref="GoalRow"/>).</summary>
-        Goals = 17, FieldCount = 26;
+        Goals = 17,
+        /// <summary>The bend sweep's per-strand rest directions and joint shares (FastBendSystem), filled per chunk.</summary>
+        BendRestX = 26, BendRestY = 27, BendRestZ = 28, BendA = 29, BendB = 30, FieldCount = 31;
 
     /// <summary>Rows −1 … 16: goal rows past both ends stay zero, so goal sums need no masks.</summary>
     public const int Capacity = (Rows + 2) * Lanes;
