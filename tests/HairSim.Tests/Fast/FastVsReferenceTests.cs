@@ -38,7 +38,7 @@ public class FastVsReferenceTests(ITestOutputHelper output)
     public static TheoryData<string, string> SystemsAndScenes()
     {
         var d = new TheoryData<string, string>();
-        string[] systems = [HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, BendSystem.SystemName, LengthSystem.SystemName, CollideSystem.SystemName];
+        string[] systems = [HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, BendSystem.SystemName, LengthSystem.SystemName, CollideSystem.SystemName, SegmentCollideSystem.SystemName];
         foreach (var s in systems)
             foreach (var n in FastPathScenes.Names) d.Add(s, n);
         return d;
