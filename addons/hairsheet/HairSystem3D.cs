@@ -63,6 +63,10 @@ public partial class HairSystem3D : Node3D
     /// <summary>Air drag per natural time √(length / 1 g): 0.32 = 2/s on 25 cm hair; the same look at any size.</summary>
     [Export(PropertyHint.Range, "0,10,0.01")] public float Damping { get => _settings.Damping; set { _settings.Damping = value; Invalidate(); } }
     [Export(PropertyHint.Range, "1,32,1")] public int Substeps { get => _settings.Substeps; set { _settings.Substeps = value; Invalidate(); } }
+    /// <summary>Coulomb friction against the colliders: 0 = frictionless; 0.5 rests on a head turned ~25°, 1 clings up to ~45°.</summary>
+    [Export(PropertyHint.Range, "0,2,0.01")] public float StaticFriction { get => _settings.StaticFriction; set { _settings.StaticFriction = value; Invalidate(); } }
+    /// <summary>Friction while sliding: 0 = frictionless; usually a little below Static Friction.</summary>
+    [Export(PropertyHint.Range, "0,2,0.01")] public float KineticFriction { get => _settings.KineticFriction; set { _settings.KineticFriction = value; Invalidate(); } }
     [Export] public Vector3 Gravity { get => _settings.Gravity.ToGodot(); set { _settings.Gravity = value.ToNumerics(); Invalidate(); } }
     [Export(PropertyHint.Range, "10,240,1,suffix:Hz")] public int StepsPerSecond { get => _settings.StepsPerSecond; set { _settings.StepsPerSecond = value; Invalidate(); } }
     /// <summary>Collide with the groom's head ellipsoid (in addition to child collider nodes).</summary>

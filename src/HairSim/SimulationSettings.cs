@@ -81,6 +81,21 @@ public sealed class SimulationSettings
     /// <summary>Tangential velocity kept on contact with a collider (1 = frictionless sliding).</summary>
     public float ContactSlide { get; set; } = 1f;
     /// <summary>
+    /// Coulomb static friction μs against colliders, in position-based form (Macklin et al. 2014, §6.1): a particle
+    /// whose slide along the surface in a substep is shorter than μs × the depth it was pushed out by stays where it was
+    /// along the surface. Dimensionless, so scale- and rate-free. 0 = frictionless (the default, exactly as without it);
+    /// 0.5: hair rests on a head turned about 25° and slides when it turns further (tan 25° ≈ 0.47); 1: it holds up to
+    /// about 45°, hair clings to the top of the head and drapes over its sides; 2 and above: grippy, like wet or waxed hair.
+    /// </summary>
+    public float StaticFriction { get; set; }
+    /// <summary>
+    /// Coulomb kinetic friction μk against colliders: hair that does slide loses μk × the pushed-out depth of its slide
+    /// per substep (Macklin et al. 2014, §6.1). Dimensionless. 0 = frictionless (the default); 0.3: hair still slides off
+    /// a sloping head but visibly slower, settling where the slope flattens; 0.8 with μs 1: silky hair that slides in
+    /// short, slow slips; usually a little below <see cref="StaticFriction"/>.
+    /// </summary>
+    public float KineticFriction { get; set; }
+    /// <summary>
     /// Speed limit, a guard against explosions, in units of the hair's natural speed √(1 g·L) (1.57 m/s for 25 cm hair):
     /// the default 25 is 40 m/s there. Bounds the velocity every frame leaves in the buffers. 0 = off.
     /// </summary>
@@ -124,6 +139,7 @@ public sealed class SimulationSettings
         target.Gravity = Gravity; target.Bend = Bend; target.Sag = Sag; target.BendDamping = BendDamping; target.Alpha = Alpha; target.GlobalShapeStiffness = GlobalShapeStiffness; target.Mode = Mode;
         target.Damping = Damping; target.Substeps = Substeps; target.Length = Length; target.LengthIterations = LengthIterations;
         target.LengthDamping = LengthDamping; target.ContactSlide = ContactSlide; target.MaxSpeed = MaxSpeed;
+        target.StaticFriction = StaticFriction; target.KineticFriction = KineticFriction;
         target.TeleportDistance = TeleportDistance; target.TeleportAngle = TeleportAngle; target.Path = Path;
         target.Guards = Guards; target.MaxSubstep = MaxSubstep; target.MaxHeadTravel = MaxHeadTravel; target.MaxFallPerSubstep = MaxFallPerSubstep;
     }
@@ -140,6 +156,8 @@ public sealed class SimulationSettings
         if (LengthIterations < 1 || LengthIterations > 256) throw new ArgumentOutOfRangeException(nameof(LengthIterations), LengthIterations, "Length iterations must be in 1 … 256.");
         Range(LengthDamping, 0f, 1f, nameof(LengthDamping));
         Range(ContactSlide, 0f, 1f, nameof(ContactSlide));
+        Range(StaticFriction, 0f, 10f, nameof(StaticFriction));
+        Range(KineticFriction, 0f, 10f, nameof(KineticFriction));
         Range(MaxSpeed, 0f, 1e6f, nameof(MaxSpeed));
         Range(TeleportDistance, 0f, 1e6f, nameof(TeleportDistance));
         Range(TeleportAngle, 0f, MathF.PI, nameof(TeleportAngle));

@@ -34,6 +34,9 @@ public sealed class HairNodeSettings
     /// <summary>Air drag per natural time √(length / 1 g): 0.32 = 2/s on 25 cm hair, the same look at any size.</summary>
     public float Damping { get; set; } = 0.32f;
     public int Substeps { get; set; } = 4;
+    /// <summary>Coulomb friction against the colliders (static, kinetic): 0 = frictionless, 1 = hair clings up to ~45° slopes.</summary>
+    public float StaticFriction { get; set; }
+    public float KineticFriction { get; set; }
     public Vector3 Gravity { get; set; } = new(0f, -9.81f, 0f);
     /// <summary>Interpolated render strands between neighbouring simulated strands.</summary>
     public int RenderDensity { get; set; } = 1;
@@ -65,6 +68,8 @@ public sealed class HairNodeSettings
         FloatRange(p, "Stiffness", Stiffness, 0f, 1f);
         FloatRange(p, "Damping", Damping, 0f, 100f);
         IntRange(p, "Substeps", Substeps, 1, 64);
+        FloatRange(p, "Static Friction", StaticFriction, 0f, 10f);
+        FloatRange(p, "Kinetic Friction", KineticFriction, 0f, 10f);
         if (!Finite(Gravity) || Gravity.Length() > 1000f) p.Add($"Gravity must be finite and at most 1000 m/s², got {Gravity}.");
         IntRange(p, "Render Density", RenderDensity, 0, RenderSettings.MaxStrandsPerGap);
         Color(p, "Root Color", RootColor);
@@ -110,6 +115,8 @@ public sealed class HairNodeSettings
             Alpha = Stiffness,
             Damping = Damping,
             Substeps = Substeps,
+            StaticFriction = StaticFriction,
+            KineticFriction = KineticFriction,
             Gravity = Gravity,
             Path = SolverPath.Fast,
         };

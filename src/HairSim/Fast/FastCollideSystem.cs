@@ -7,9 +7,10 @@ namespace HairSim.Fast;
 /// <summary>
 /// Fast <see cref="CollideSystem"/>: one SIMD pass per collider (particles are independent, so this equals the
 /// reference's per-particle loop over colliders). Ellipsoid: radial projection as in <see cref="Collider.Resolve"/>;
-/// sphere and capsule share one kernel (a sphere is a capsule with both ends at its centre).
+/// sphere and capsule share one kernel (a sphere is a capsule with both ends at its centre). Friction (see
+/// FastCollideSystem.Friction.cs) runs in the same kernels on the 8- and 16-lane paths; chunks decline friction frames.
 /// </summary>
-public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
+public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
 {
     private readonly bool _wide;
 
@@ -22,8 +23,16 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
     public string Name => CollideSystem.SystemName;
     public SystemPhase Phase => SystemPhase.Substep;
 
-    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end) =>
-        Resolve(ctx, substep, scene.World, begin, end);
+    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
+    {
+        var st = ctx.Settings;
+        if (st.StaticFriction > 0f || st.KineticFriction > 0f) ResolveWithFriction(ctx, substep, scene.World, begin, end);
+        else
+        {
+            _starts.Forget(scene.World, begin, end);
+            Resolve(ctx, substep, scene.World, begin, end);
+        }
+    }
 
     bool IStrandChunkSystem.SupportsChunks => _wide;
 
@@ -31,19 +40,25 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
     private EllipsoidKernel[] _chunkEllipsoids = [];
     private CapsuleKernel[] _chunkCapsules = [];
 
+    /// <summary>A chunk's frictionless frame leaves the stored friction starts of its strands stale.</summary>
+    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) => _starts.Forget(w, s0, s0 + StrandChunk.Lanes);
+
     bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {
+        // Friction needs each particle's start-of-substep position, which a chunk has no rows for: step system by system.
+        if (ctx.Settings.StaticFriction > 0f || ctx.Settings.KineticFriction > 0f) return false;
         int n = ctx.Substeps * ctx.ColliderCount;
         if (_chunkEllipsoids.Length < n) { _chunkEllipsoids = new EllipsoidKernel[n]; _chunkCapsules = new CapsuleKernel[n]; }
         float slide = ctx.Settings.ContactSlide;
+        var friction = default(FrictionLanes); // off (friction frames do not run on chunks)
         for (int s = 0; s < ctx.Substeps; s++)
         {
             var colliders = ctx.CollidersAt(s);
             for (int c = 0; c < colliders.Length; c++)
             {
                 int i = s * colliders.Length + c;
-                if (colliders[c].Kind == ColliderKind.Ellipsoid) _chunkEllipsoids[i] = new EllipsoidKernel(colliders[c], slide);
-                else _chunkCapsules[i] = new CapsuleKernel(colliders[c], slide);
+                if (colliders[c].Kind == ColliderKind.Ellipsoid) _chunkEllipsoids[i] = new EllipsoidKernel(colliders[c], slide, friction);
+                else _chunkCapsules[i] = new CapsuleKernel(colliders[c], slide, friction);
             }
         }
         return true;
@@ -66,17 +81,18 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
     {
         var colliders = ctx.CollidersAt(substep);
         float slide = ctx.Settings.ContactSlide;
+        var friction = default(FrictionLanes); // off: the frictionless kernels
         for (int c = 0; c < colliders.Length; c++)
         {
             var col = colliders[c];
             if (col.Kind == ColliderKind.Ellipsoid)
             {
-                var k = new EllipsoidKernel(col, slide);
+                var k = new EllipsoidKernel(col, slide, friction);
                 ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
             }
             else
             {
-                var k = new CapsuleKernel(col, slide);
+                var k = new CapsuleKernel(col, slide, friction);
                 ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
             }
         }
@@ -114,6 +130,7 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
         private readonly PoseLanes _toLocal, _toWorld;
         private readonly Vector<float> _cx, _cy, _cz, _invRx, _invRy, _invRz, _invRx2, _invRy2, _invRz2, _ry, _slide;
         private readonly W16 _w;
+        private readonly FrictionLanes _friction;
 
         /// <summary>The 16-lane copies of the constants.</summary>
         private readonly struct W16(PoseLanes toLocal, PoseLanes toWorld, in Collider c, float slide)
@@ -145,14 +162,24 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
             var nInv = Vector512<float>.One / Vector512.Sqrt(nx * nx + ny * ny + nz * nz);
             k.ToWorld.Point(sx, sy, sz, out var wx, out var wy, out var wz);
             k.ToWorld.Direction(nx * nInv, ny * nInv, nz * nInv, out var wnx, out var wny, out var wnz);
-            Vector512.ConditionalSelect(hit, wx, x).StoreUnsafe(ref px);
-            Vector512.ConditionalSelect(hit, wy, y).StoreUnsafe(ref py);
-            Vector512.ConditionalSelect(hit, wz, z).StoreUnsafe(ref pz);
+            if (_friction.On)
+            {
+                var ex = sx - lx; var ey = sy - ly; var ez = sz - lz;
+                PushOutWithFriction16(hit, x, y, z, wx, wy, wz, wnx, wny, wnz, Vector512.Sqrt(ex * ex + ey * ey + ez * ez), in _friction,
+                    ref px, ref py, ref pz, ref vx, ref vy, ref vz, ref rx, ref ry, ref rz);
+            }
+            else
+            {
+                Vector512.ConditionalSelect(hit, wx, x).StoreUnsafe(ref px);
+                Vector512.ConditionalSelect(hit, wy, y).StoreUnsafe(ref py);
+                Vector512.ConditionalSelect(hit, wz, z).StoreUnsafe(ref pz);
+            }
             Respond16(hit, wnx, wny, wnz, k.Slide, ref vx, ref vy, ref vz);
         }
 
-        public EllipsoidKernel(in Collider c, float slide)
+        public EllipsoidKernel(in Collider c, float slide, in FrictionLanes friction)
         {
+            _friction = friction;
             _toLocal = PoseLanes.InverseRotation(c.Rotation);
             _toWorld = new PoseLanes(c.Rotation, c.Center);
             _cx = new(c.Center.X); _cy = new(c.Center.Y); _cz = new(c.Center.Z);
@@ -183,9 +210,19 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
             var nInv = Vector<float>.One / Vector.SquareRoot(nx * nx + ny * ny + nz * nz);
             _toWorld.Point(sx, sy, sz, out var wx, out var wy, out var wz);
             _toWorld.Direction(nx * nInv, ny * nInv, nz * nInv, out var wnx, out var wny, out var wnz);
-            Simd.St(ref px, 0, Simd.Sel(hit, wx, x));
-            Simd.St(ref py, 0, Simd.Sel(hit, wy, y));
-            Simd.St(ref pz, 0, Simd.Sel(hit, wz, z));
+            if (_friction.On)
+            {
+                // Depth pushed out, measured in the local frame as the reference does (a rotation keeps lengths).
+                var ex = sx - lx; var ey = sy - ly; var ez = sz - lz;
+                PushOutWithFriction(hit, x, y, z, wx, wy, wz, wnx, wny, wnz, Vector.SquareRoot(ex * ex + ey * ey + ez * ez), in _friction,
+                    ref px, ref py, ref pz, ref vx, ref vy, ref vz, ref rx, ref ry, ref rz);
+            }
+            else
+            {
+                Simd.St(ref px, 0, Simd.Sel(hit, wx, x));
+                Simd.St(ref py, 0, Simd.Sel(hit, wy, y));
+                Simd.St(ref pz, 0, Simd.Sel(hit, wz, z));
+            }
             Respond(hit, wnx, wny, wnz, _slide, ref vx, ref vy, ref vz);
         }
     }
@@ -194,6 +231,7 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
     {
         private readonly Vector<float> _ax, _ay, _az, _abx, _aby, _abz, _invLen2, _radius, _slide, _fx, _fy, _fz;
         private readonly bool _segment;
+        private readonly FrictionLanes _friction;
         private readonly Vector512<float> _ax16, _ay16, _az16, _abx16, _aby16, _abz16, _invLen216, _radius16, _slide16, _fx16, _fy16, _fz16;
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -217,14 +255,21 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
             var nx = Vector512.ConditionalSelect(onAxis, _fx16, dx * inv);
             var ny = Vector512.ConditionalSelect(onAxis, _fy16, dy * inv);
             var nz = Vector512.ConditionalSelect(onAxis, _fz16, dz * inv);
-            Vector512.ConditionalSelect(hit, cx + nx * _radius16, x).StoreUnsafe(ref px);
-            Vector512.ConditionalSelect(hit, cy + ny * _radius16, y).StoreUnsafe(ref py);
-            Vector512.ConditionalSelect(hit, cz + nz * _radius16, z).StoreUnsafe(ref pz);
+            if (_friction.On)
+                PushOutWithFriction16(hit, x, y, z, cx + nx * _radius16, cy + ny * _radius16, cz + nz * _radius16, nx, ny, nz, _radius16 - dist,
+                    in _friction, ref px, ref py, ref pz, ref vx, ref vy, ref vz, ref rx, ref ry, ref rz);
+            else
+            {
+                Vector512.ConditionalSelect(hit, cx + nx * _radius16, x).StoreUnsafe(ref px);
+                Vector512.ConditionalSelect(hit, cy + ny * _radius16, y).StoreUnsafe(ref py);
+                Vector512.ConditionalSelect(hit, cz + nz * _radius16, z).StoreUnsafe(ref pz);
+            }
             Respond16(hit, nx, ny, nz, _slide16, ref vx, ref vy, ref vz);
         }
 
-        public CapsuleKernel(in Collider c, float slide)
+        public CapsuleKernel(in Collider c, float slide, in FrictionLanes friction)
         {
+            _friction = friction;
             var ab = c.Kind == ColliderKind.Capsule ? c.End - c.Center : Vector3.Zero;
             float len2 = Vector3.Dot(ab, ab);
             _segment = len2 >= 1e-18f;
@@ -265,9 +310,15 @@ public sealed class FastCollideSystem : IHairSystem, IStrandChunkSystem
             var nx = Simd.Sel(onAxis, _fx, dx * inv);
             var ny = Simd.Sel(onAxis, _fy, dy * inv);
             var nz = Simd.Sel(onAxis, _fz, dz * inv);
-            Simd.St(ref px, 0, Simd.Sel(hit, cx + nx * _radius, x));
-            Simd.St(ref py, 0, Simd.Sel(hit, cy + ny * _radius, y));
-            Simd.St(ref pz, 0, Simd.Sel(hit, cz + nz * _radius, z));
+            if (_friction.On)
+                PushOutWithFriction(hit, x, y, z, cx + nx * _radius, cy + ny * _radius, cz + nz * _radius, nx, ny, nz, _radius - dist,
+                    in _friction, ref px, ref py, ref pz, ref vx, ref vy, ref vz, ref rx, ref ry, ref rz);
+            else
+            {
+                Simd.St(ref px, 0, Simd.Sel(hit, cx + nx * _radius, x));
+                Simd.St(ref py, 0, Simd.Sel(hit, cy + ny * _radius, y));
+                Simd.St(ref pz, 0, Simd.Sel(hit, cz + nz * _radius, z));
+            }
             Respond(hit, nx, ny, nz, _slide, ref vx, ref vy, ref vz);
         }
     }

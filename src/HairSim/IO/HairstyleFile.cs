@@ -8,7 +8,7 @@ namespace HairSim.IO;
 /// shape, cut lengths, positions, velocities), so a round trip is bit-exact. Binary, little-endian:
 /// <code>
 /// "HAIRSTYL" | u32 version | u32 flags (0) | u64 payload length | payload | u32 CRC-32 of everything before it
-/// payload: settings (64 B; version 2 adds the bend model, Sag and bend damping: 76 B) | render (8 B) | head (28 B) | colliders (4 + 56·n B) |
+/// payload: settings (64 B; version 2 adds the bend model, Sag, bend damping and the two friction coefficients: 84 B) | render (8 B) | head (28 B) | colliders (4 + 56·n B) |
 ///          sheets, strands per sheet, strands, capacities, live counts | 15 float buffers × particles
 /// </code>
 /// Loading checks size caps, the checksum, the version and every count against the bytes that remain before
@@ -21,7 +21,7 @@ public static class HairstyleFile
     public const int Version = 2;
     /// <summary>The oldest version this build still reads.</summary>
     public const int OldestVersion = 1;
-    private const int SettingsBytes = 76;
+    private const int SettingsBytes = 84;
     public const int MaxColliders = 256;
     public const int HeaderBytes = 24;
     private const int BufferCount = 15;
@@ -54,7 +54,7 @@ public static class HairstyleFile
         o.Float(st.Alpha); o.Float(st.GlobalShapeStiffness); o.Float(st.Damping); o.Float(st.LengthDamping);
         o.Float(st.ContactSlide); o.Float(st.MaxSpeed); o.Float(st.TeleportDistance); o.Float(st.TeleportAngle);
         o.Int((int)st.Mode); o.Int(st.Substeps); o.Int((int)st.Length); o.Int(st.LengthIterations); o.Int((int)st.Path);
-        o.Int((int)st.Bend); o.Float(st.Sag); o.Float(st.BendDamping);
+        o.Int((int)st.Bend); o.Float(st.Sag); o.Float(st.BendDamping); o.Float(st.StaticFriction); o.Float(st.KineticFriction);
 
         o.Int(scene.Render != null ? 1 : 0); o.Int(scene.Render?.StrandsPerGap ?? 0);
         o.Vec(w.Head.Position); o.Quat(w.Head.Rotation);
@@ -143,7 +143,11 @@ public static class HairstyleFile
             ContactSlide = r.Float(), MaxSpeed = r.Float(), TeleportDistance = r.Float(), TeleportAngle = r.Float(),
             Mode = (ShapeMatchMode)r.Int(), Substeps = r.Int(), Length = (LengthMode)r.Int(), LengthIterations = r.Int(), Path = (SolverPath)r.Int(),
         };
-        if (version >= 2) { st.Bend = (BendModel)r.Int(); st.Sag = r.Float(); st.BendDamping = r.Float(); }
+        if (version >= 2)
+        {
+            st.Bend = (BendModel)r.Int(); st.Sag = r.Float(); st.BendDamping = r.Float();
+            st.StaticFriction = r.Float(); st.KineticFriction = r.Float();
+        }
         else st.Bend = BendModel.SourceTriples;
         st.Validate();
         int hasRender = r.Int(), perGap = r.Int();

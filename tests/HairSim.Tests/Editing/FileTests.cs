@@ -16,7 +16,7 @@ public sealed class FileTests : IDisposable
     /// <summary>A small styled scene: cut, head moved, extra colliders, non-default settings, render on.</summary>
     private static HairScene Styled()
     {
-        var settings = new SimulationSettings { Bend = BendModel.SourceTriples, Sag = 0.2f, BendDamping = 0.7f, Alpha = 0.7f, GlobalShapeStiffness = 0.04f, Substeps = 3, Length = LengthMode.Pbd, Mode = ShapeMatchMode.LiteralForce, Gravity = new Vector3(0.1f, -9f, 0.2f) };
+        var settings = new SimulationSettings { Bend = BendModel.SourceTriples, Sag = 0.2f, BendDamping = 0.7f, StaticFriction = 0.6f, KineticFriction = 0.4f, Alpha = 0.7f, GlobalShapeStiffness = 0.04f, Substeps = 3, Length = LengthMode.Pbd, Mode = ShapeMatchMode.LiteralForce, Gravity = new Vector3(0.1f, -9f, 0.2f) };
         var scene = GroomBuilder.BuildScene(new GroomSettings { SheetCount = 5, StrandsPerSheet = 3, ParticlesPerStrand = 6 }, settings);
         scene.AddCollider(Collider.Sphere(new Vector3(0, -0.1f, 0.05f), 0.04f));
         scene.AddCollider(Collider.Capsule(new Vector3(0, -0.15f, 0), new Vector3(0, -0.3f, 0), 0.05f));
@@ -40,14 +40,14 @@ public sealed class FileTests : IDisposable
     [Fact]
     public void VersionOneFilesLoadWithTheSourcesScheme()
     {
-        // A version 1 file is a version 2 file without the 12 bytes of bend settings that end the settings block.
+        // A version 1 file is a version 2 file without the 20 bytes of bend and friction settings that end the settings block.
         var scene = Styled();
         scene.Settings.Bend = BendModel.RestShape;
         var v2 = Bytes(scene);
         const int settingsEnd = HairstyleFile.HeaderBytes + 64;
-        var v1 = new byte[v2.Length - 12];
+        var v1 = new byte[v2.Length - 20];
         v2.AsSpan(0, settingsEnd).CopyTo(v1);
-        v2.AsSpan(settingsEnd + 12).CopyTo(v1.AsSpan(settingsEnd));
+        v2.AsSpan(settingsEnd + 20).CopyTo(v1.AsSpan(settingsEnd));
         BinaryPrimitives.WriteInt32LittleEndian(v1.AsSpan(8), 1);
         BinaryPrimitives.WriteInt64LittleEndian(v1.AsSpan(16), v1.Length - HairstyleFile.HeaderBytes - 4L);
         FixCrc(v1);
@@ -76,7 +76,7 @@ public sealed class FileTests : IDisposable
                      (b.Gravity, b.Alpha, b.GlobalShapeStiffness, b.Mode, b.Damping, b.Substeps, b.Length, b.LengthIterations));
         Assert.Equal((a.LengthDamping, a.ContactSlide, a.MaxSpeed, a.TeleportDistance, a.TeleportAngle, a.Path),
                      (b.LengthDamping, b.ContactSlide, b.MaxSpeed, b.TeleportDistance, b.TeleportAngle, b.Path));
-        Assert.Equal((a.Bend, a.Sag, a.BendDamping), (b.Bend, b.Sag, b.BendDamping));
+        Assert.Equal((a.Bend, a.Sag, a.BendDamping, a.StaticFriction, a.KineticFriction), (b.Bend, b.Sag, b.BendDamping, b.StaticFriction, b.KineticFriction));
         Assert.Equal(scene.Colliders.Count, loaded.Colliders.Count);
         for (int c = 0; c < scene.Colliders.Count; c++)
         {
@@ -140,8 +140,8 @@ public sealed class FileTests : IDisposable
     public void HostileSizesAreRefusedBeforeAllocating()
     {
         var data = Bytes(Styled());
-        // Payload offsets: settings 76, render 8, head 28, colliders 4 + 56·3, then the sheet count.
-        int sheetAt = 24 + 76 + 8 + 28 + 4 + 56 * 3;
+        // Payload offsets: settings 84, render 8, head 28, colliders 4 + 56·3, then the sheet count.
+        int sheetAt = 24 + 84 + 8 + 28 + 4 + 56 * 3;
         Assert.Equal(5, BinaryPrimitives.ReadInt32LittleEndian(data.AsSpan(sheetAt)));
         foreach (int evil in new[] { int.MaxValue, 1 << 28, -1, 0 })
         {
