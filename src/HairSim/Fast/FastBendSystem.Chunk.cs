@@ -11,6 +11,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
 {
     bool IStrandChunkSystem.SupportsChunks => UsesWide;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
+    bool IStrandChunkSystem.TakesCutStrands => true;
 
     // This frame's settings, for PrepareChunk (which gets no context).
     private float _chunkSag, _chunkH, _chunkZeta;

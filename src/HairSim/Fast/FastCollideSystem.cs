@@ -35,6 +35,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
     }
 
     bool IStrandChunkSystem.SupportsChunks => _wide;
+    bool IStrandChunkSystem.TakesCutStrands => true;
 
     // This frame's kernel of each (substep, collider), built once for all chunks; the slot of the other kind is unused.
     private EllipsoidKernel[] _chunkEllipsoids = [];

@@ -70,6 +70,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
 
     bool IStrandChunkSystem.SupportsChunks => FastPathInfo.Avx512;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.PinRest;
+    bool IStrandChunkSystem.TakesCutStrands => true;
 
     /// <summary>
     /// The rest positions of the chunk's pinned particles, into the rest rows of the rows that hold pins: from the

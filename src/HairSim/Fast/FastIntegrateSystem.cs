@@ -38,6 +38,7 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
     private Kernel _chunkKernel;
 
     bool IStrandChunkSystem.SupportsChunks => _wide;
+    bool IStrandChunkSystem.TakesCutStrands => true;
 
     bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {

@@ -1,3 +1,4 @@
+using System.Numerics;
 using System.Runtime.Intrinsics.X86;
 using System.Runtime.CompilerServices;
 using System.Runtime.Intrinsics;
@@ -89,6 +90,13 @@ internal interface IStrandChunkSystem
     bool BeginChunkFrame(FrameContext ctx) => true;
     /// <summary>The first of the 32 strands from s0 that may not go into a chunk (e.g. shape matching: a bent rest shape), or −1.</summary>
     int RefusedLane(HairWorld w, int s0) => -1;
+    /// <summary>
+    /// Whether the system runs cut strands on chunks: the particles past a cut arrive as pins (InvMass 0) whose
+    /// moves are never stored, so a per-particle system or a root-to-tip sweep that never moves pins gets the live
+    /// particles' bits of the ordinary path. Systems that couple a particle to the next one (triples, segments, the
+    /// source's length sweep) keep cut strands on their ordinary path.
+    /// </summary>
+    bool TakesCutStrands => false;
     /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
     void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
     /// <summary>
@@ -109,13 +117,19 @@ internal sealed class StrandChunkRunner
     private readonly IHairSystem[] _systems;
     private readonly IStrandChunkSystem[] _chunkSystems;
     private readonly ChunkFields _needs;
+    private readonly bool _takesCut;
+    private bool _cutThisFrame;
 
     private StrandChunkRunner(IHairSystem[] systems, IStrandChunkSystem[] chunkSystems)
     {
         _systems = systems;
         _chunkSystems = chunkSystems;
-        foreach (var c in chunkSystems) _needs |= c.ChunkNeeds;
+        _takesCut = true;
+        foreach (var c in chunkSystems) { _needs |= c.ChunkNeeds; _takesCut &= c.TakesCutStrands; }
     }
+
+    /// <summary>Whether cut strands (capacity 16, fewer live particles) go into chunks: every system takes them.</summary>
+    public bool TakesCutStrands => _takesCut;
 
     /// <summary>A runner for these substep systems, or null if one of them cannot run on chunks.</summary>
     public static StrandChunkRunner? TryCreate(IHairSystem[] substepSystems)
@@ -140,6 +154,9 @@ internal sealed class StrandChunkRunner
     /// <summary>Prepares every system's chunk kernel for this frame; false if some system's settings do not take it.</summary>
     public bool BeginFrame(FrameContext ctx)
     {
+        // A teleport carries the particles past a cut with the head (FastHeadFollowSystem.CarryRigidly), which a
+        // chunk, putting them back as they were, would not: cut strands take the ordinary path on those rare frames.
+        _cutThisFrame = _takesCut && !ctx.Teleported;
         foreach (var c in _chunkSystems) if (!c.BeginChunkFrame(ctx)) return false;
         return true;
     }
@@ -152,6 +169,8 @@ internal sealed class StrandChunkRunner
         var w = scene.World;
         var tile = new StrandScratch(stackalloc float[StrandChunk.Size], StrandChunk.Capacity);
         Span<int> firsts = stackalloc int[StrandChunk.Lanes];
+        // The particles past each cut, as they were: written back after the chunk is stored (they never move).
+        Span<float> pastCuts = _takesCut ? stackalloc float[PastCutFields * StrandChunk.Cells] : default;
         bool cleared = false;
         int ordinaryFrom = begin, stepped = 0, handedBack = 0;
         for (int s0 = begin; s0 + StrandChunk.Lanes <= end;)
@@ -166,7 +185,7 @@ internal sealed class StrandChunkRunner
             if (!cleared) { ClearFixedRows(tile); cleared = true; }
             for (int l = 0; l < StrandChunk.Lanes; l++) firsts[l] = w.StrandFirst[s0 + l];
             stepped++;
-            if (!RunChunk(scene, ctx, s0, tile, firsts)) handedBack++;
+            if (!RunChunk(scene, ctx, s0, tile, firsts, pastCuts)) handedBack++;
             s0 += StrandChunk.Lanes;
             ordinaryFrom = s0;
         }
@@ -185,7 +204,7 @@ internal sealed class StrandChunkRunner
         for (int l = 0; l < StrandChunk.Lanes; l++)
         {
             int s = s0 + l;
-            if (w.StrandParticleCount[s] != StrandChunk.Rows || w.StrandCapacity[s] != StrandChunk.Rows) return s + 1;
+            if (w.StrandCapacity[s] != StrandChunk.Rows || (w.StrandParticleCount[s] != StrandChunk.Rows && !_cutThisFrame)) return s + 1;
             if (w.StrandFirst[s] != first + l * StrandChunk.Rows) return s; // not contiguous with s − 1
         }
         foreach (var c in _chunkSystems)
@@ -197,13 +216,14 @@ internal sealed class StrandChunkRunner
     }
 
     /// <summary>One chunk through all substeps; false if a system handed it back to the ordinary path midway.</summary>
-    private bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, ReadOnlySpan<int> firsts)
+    private bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, ReadOnlySpan<int> firsts, Span<float> pastCuts)
     {
         var w = scene.World;
         int first = firsts[0];
         Load(w.PosX, first, tile, StrandChunk.X); Load(w.PosY, first, tile, StrandChunk.Y); Load(w.PosZ, first, tile, StrandChunk.Z);
         Load(w.VelX, first, tile, StrandChunk.VelX); Load(w.VelY, first, tile, StrandChunk.VelY); Load(w.VelZ, first, tile, StrandChunk.VelZ);
         Load(w.InvMass, first, tile, StrandChunk.InvMass);
+        uint cutLanes = _cutThisFrame ? SavePastCuts(w, s0, first, tile, pastCuts) : 0u;
         if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, tile, StrandChunk.RestLength);
         if ((_needs & ChunkFields.Shape) != 0)
         {
@@ -221,11 +241,50 @@ internal sealed class StrandChunkRunner
             {
                 if (_chunkSystems[k].RunChunk(scene, ctx, s, chunk)) { prefetch.Next(slice); continue; }
                 Store(tile, first, w);
+                if (cutLanes != 0) RestorePastCuts(w, s0, first, cutLanes, pastCuts);
                 RunOrdinary(scene, ctx, s0, s0 + StrandChunk.Lanes, s, k);
                 return false;
             }
         Store(tile, first, w);
+        if (cutLanes != 0) RestorePastCuts(w, s0, first, cutLanes, pastCuts);
         return true;
+    }
+
+    /// <summary>Position and velocity: what a chunk stores, so what must be put back past a cut.</summary>
+    private const int PastCutFields = 6;
+
+    /// <summary>
+    /// Masks the particles past each lane's cut as pins in the chunk (InvMass 0: no system moves them into a live
+    /// one's way) and keeps their world values, which the full-row store overwrites. Returns the cut lanes as bits.
+    /// </summary>
+    private static uint SavePastCuts(HairWorld w, int s0, int first, scoped StrandScratch tile, Span<float> saved)
+    {
+        uint lanes = 0;
+        ref float m = ref tile.Data[tile.Offset(StrandChunk.InvMass)];
+        for (int l = 0; l < StrandChunk.Lanes; l++)
+        {
+            int n = w.StrandParticleCount[s0 + l];
+            if (n == StrandChunk.Rows) continue;
+            lanes |= 1u << l;
+            for (int k = n; k < StrandChunk.Rows; k++) Unsafe.Add(ref m, k * StrandChunk.Lanes + l) = 0f;
+            int from = first + l * StrandChunk.Rows + n, count = StrandChunk.Rows - n, at = l * StrandChunk.Rows + n;
+            ReadOnlySpan<float[]> fields = [w.PosX, w.PosY, w.PosZ, w.VelX, w.VelY, w.VelZ];
+            for (int f = 0; f < PastCutFields; f++)
+                fields[f].AsSpan(from, count).CopyTo(saved.Slice(f * StrandChunk.Cells + at, count));
+        }
+        return lanes;
+    }
+
+    private static void RestorePastCuts(HairWorld w, int s0, int first, uint lanes, ReadOnlySpan<float> saved)
+    {
+        for (; lanes != 0; lanes &= lanes - 1)
+        {
+            int l = BitOperations.TrailingZeroCount(lanes), n = w.StrandParticleCount[s0 + l];
+            int to = first + l * StrandChunk.Rows + n, count = StrandChunk.Rows - n, at = l * StrandChunk.Rows + n;
+            ReadOnlySpan<float[]> fields = [w.PosX, w.PosY, w.PosZ, w.VelX, w.VelY, w.VelZ];
+            for (int f = 0; f < PastCutFields; f++)
+                saved.Slice(f * StrandChunk.Cells + at, count).CopyTo(fields[f].AsSpan(to, count));
+        }
     }
 
     /// <summary>Substeps from <paramref name="fromSubstep"/> (its systems from <paramref name="fromSystem"/>) of strands [begin, end), system by system.</summary>

@@ -12,7 +12,7 @@ internal static class FastPathScenes
         "literal", "length-none", "pbd", "global-shape", "speed-limit", "one-pin", "no-colliders",
         "cut-mixed",
         // The default bend model (BendModel.RestShape), on the draped groom, cut, styled, odd lengths and other length modes.
-        "rest", "rest-cut", "rest-bent", "rest-odd-lengths", "rest-soft", "rest-speed-limit", "rest-all-colliders", "limp",
+        "rest", "rest-cut", "rest-cut-mixed", "rest-bent", "rest-odd-lengths", "rest-soft", "rest-speed-limit", "rest-all-colliders", "limp",
     ];
 
     /// <summary>Scenes of the default bend model (the others run the source's triple shape matching).</summary>

@@ -44,10 +44,13 @@ public class StrandChunkTests(ITestOutputHelper output)
             bool chunkable = scene is "straight" or "sphere" or "capsule" or "rotated-ellipsoid" or "all-colliders" or "literal"
                 or "length-none" or "speed-limit" or "one-pin" or "no-colliders"
                 // The default bend model takes bent rest shapes in chunks too (only the source's triples refuse them).
-                or "rest" or "rest-bent" or "rest-soft" or "rest-speed-limit" or "rest-all-colliders" or "limp";
+                or "rest" or "rest-bent" or "rest-soft" or "rest-speed-limit" or "rest-all-colliders" or "limp"
+                // and cut strands (particles past a cut ride along as pins and are put back as they were).
+                or "rest-cut" or "rest-cut-mixed";
             if (ChunksExpected && chunkable) Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
             // No run of 32 whole 16-particle strands (cut, cut-mixed, short8), or settings the chunk kernels leave to the plain path.
-            if (scene is "pbd" or "global-shape" or "short8" or "cut" or "cut-mixed" or "rest-cut") Assert.Equal(0, stepped);
+            // The source's triples and length sweep keep cut strands on their own path.
+            if (scene is "pbd" or "global-shape" or "short8" or "cut" or "cut-mixed") Assert.Equal(0, stepped);
             output.WriteLine($"{scene}, {threads} thread(s): {stepped} chunks over 12 frames");
         }
     }
@@ -87,6 +90,36 @@ public class StrandChunkTests(ITestOutputHelper output)
         StepBoth(sim, simP, 1);
         // 144 strands, strand 10 cut: chunks start at 11, 43, 75, 107 (strands 0 … 10 and 139 … 143 go system by system).
         if (ChunksExpected) Assert.Equal(4, sim.Pipeline.LastFrameChunks.Stepped);
+    }
+
+    [Fact]
+    public void CutStrandsRideInChunksAndWhatIsPastTheCutStaysAsItWas()
+    {
+        var scene = FastPathScenes.Build("rest-cut", SolverPath.Fast);
+        var w = scene.World;
+        var before = w.Clone();
+        var sim = new HairSimulation(scene);
+        // Frames without a teleport (which carries everything, past cuts too, with the head: FastPathScenes.HeadAt(6)).
+        for (int f = 1; f <= 5; f++)
+        {
+            sim.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            Assert.False(sim.Pipeline.LastFrame.Teleported);
+        }
+        // 144 strands, every one cut: four chunks of 32, each frame (the last 16 go system by system).
+        if (ChunksExpected) Assert.Equal(4, sim.Pipeline.LastFrameChunks.Stepped);
+        int live = 0, past = 0;
+        for (int s = 0; s < w.StrandCount; s++)
+        {
+            int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
+            for (int i = first + 1; i < first + n; i++) if (w.GetPosition(i) != before.GetPosition(i)) live++;
+            for (int i = first + n; i < first + w.StrandCapacity[s]; i++)
+            {
+                Assert.Equal(before.GetPosition(i), w.GetPosition(i));
+                Assert.Equal(before.GetVelocity(i), w.GetVelocity(i));
+                past++;
+            }
+        }
+        Assert.True(past > 0 && live > 0, $"{past} particles past cuts, {live} live particles moved");
     }
 
     [Fact]
