@@ -15,11 +15,11 @@ public sealed partial class FastBendSystem
     /// <summary>Sweep constants broadcast to Vector&lt;float&gt; lanes.</summary>
     private readonly struct Consts
     {
-        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed;
+        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed, MaxSpeedSq;
 
         public Consts(in SweepParams p)
         {
-            H = new(p.H); InvH = new(p.InvH); Reaction = new(p.Reaction); MaxSpeed = new(p.MaxSpeed);
+            H = new(p.H); InvH = new(p.InvH); Reaction = new(p.Reaction); MaxSpeed = new(p.MaxSpeed); MaxSpeedSq = new(p.MaxSpeed * p.MaxSpeed);
             FallX = new(p.FallX); FallY = new(p.FallY); FallZ = new(p.FallZ);
             Eps = new(1e-6f); Flip = new(-0.9999f);
         }
@@ -73,16 +73,19 @@ public sealed partial class FastBendSystem
                 var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
                 var hasLen = Vector.GreaterThan(len, zero);
                 var inv = Simd.Sel(hasLen, one / Simd.Sel(hasLen, len, one), zero);
+                var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
                 // Target: the rest direction turned by the frame carried from the root (v' = v + 2w(q×v) + 2q×(q×v)).
-                var cx = qy * rz - qz * ry; var cy = qz * rx - qx * rz; var cz = qx * ry - qy * rx;
-                var ccx = qy * cz - qz * cy; var ccy = qz * cx - qx * cz; var ccz = qx * cy - qy * cx;
-                var tx = rx + (qw * cx + ccx) * 2f; var ty = ry + (qw * cy + ccy) * 2f; var tz = rz + (qw * cz + ccz) * 2f;
-                var restOk = Vector.GreaterThan(rx * rx + ry * ry + rz * rz, zero);
-                tx = Simd.Sel(restOk, tx, Simd.Sel(hasLen, ex * inv, zero));
-                ty = Simd.Sel(restOk, ty, Simd.Sel(hasLen, ey * inv, new V(-1f)));
-                tz = Simd.Sel(restOk, tz, Simd.Sel(hasLen, ez * inv, zero));
+                // With c = 2q×v (the doubling by adds: the sweep is bound by its multiplies): v' = v + w·c + q×c.
+                var q2x = qx + qx; var q2y = qy + qy; var q2z = qz + qz;
+                var cx = q2y * rz - q2z * ry; var cy = q2z * rx - q2x * rz; var cz = q2x * ry - q2y * rx;
+                var tx = rx + qw * cx + (qy * cz - qz * cy); var ty = ry + qw * cy + (qz * cx - qx * cz); var tz = rz + qw * cz + (qx * cy - qy * cx);
+                // A rest direction to turn (any component non-zero, by bits: no multiplies).
+                var restOk = ~Vector.AsVectorInt32(Vector.Equals((Vector.AsVectorUInt32(rx) | Vector.AsVectorUInt32(ry) | Vector.AsVectorUInt32(rz)) & new Vector<uint>(0x7fffffffu), Vector<uint>.Zero));
+                tx = Simd.Sel(restOk, tx, Simd.Sel(hasLen, ux0, zero));
+                ty = Simd.Sel(restOk, ty, Simd.Sel(hasLen, uy0, new V(-1f)));
+                tz = Simd.Sel(restOk, tz, Simd.Sel(hasLen, uz0, zero));
                 var okLen = Vector.GreaterThan(len, c.Eps * rl) & hasLen;
-                var dx = Simd.Sel(okLen, ex * inv, tx); var dy = Simd.Sel(okLen, ey * inv, ty); var dz = Simd.Sel(okLen, ez * inv, tz);
+                var dx = Simd.Sel(okLen, ux0, tx); var dy = Simd.Sel(okLen, uy0, ty); var dz = Simd.Sel(okLen, uz0, tz);
                 // How far this segment turned since the substep's start (see BendSystem).
                 var hvx = c.H * Simd.Ld(ref d, p.Ovx + r); var hvy = c.H * Simd.Ld(ref d, p.Ovy + r); var hvz = c.H * Simd.Ld(ref d, p.Ovz + r);
                 var ux = hvx - Simd.Ld(ref s, Sux * lanes + h); var uy = hvy - Simd.Ld(ref s, Suy * lanes + h); var uz = hvz - Simd.Ld(ref s, Suz * lanes + h);
@@ -126,15 +129,16 @@ public sealed partial class FastBendSystem
                 var fx = ty * dz - tz * dy; var fy = tz * dx - tx * dz; var fz = tx * dy - ty * dx; var fw = one + dot;
                 var flip = Vector.LessThan(dot, c.Flip);
                 fx = Simd.Sel(flip, zero, fx); fy = Simd.Sel(flip, zero, fy); fz = Simd.Sel(flip, zero, fz); fw = Simd.Sel(flip, one, fw);
-                var fInv = one / Vector.SquareRoot(fx * fx + fy * fy + fz * fz + fw * fw);
+                // |f|² = 2(1 + t·d) for unit t and d, so one root normalises f, and f∘q stays a unit frame without
+                // a second (q is rebuilt from the head each substep, so the rounding cannot build up).
+                var fInv = one / Vector.SquareRoot(Simd.Sel(flip, one, fw + fw));
                 fx *= fInv; fy *= fInv; fz *= fInv; fw *= fInv;
                 var nqx = fw * qx + fx * qw + fy * qz - fz * qy;
                 var nqy = fw * qy - fx * qz + fy * qw + fz * qx;
                 var nqz = fw * qz + fx * qy - fy * qx + fz * qw;
                 var nqw = fw * qw - fx * qx - fy * qy - fz * qz;
-                var qInv = one / Vector.SquareRoot(nqx * nqx + nqy * nqy + nqz * nqz + nqw * nqw);
-                Simd.St(ref s, Sqx * lanes + h, nqx * qInv); Simd.St(ref s, Sqy * lanes + h, nqy * qInv);
-                Simd.St(ref s, Sqz * lanes + h, nqz * qInv); Simd.St(ref s, Sqw * lanes + h, nqw * qInv);
+                Simd.St(ref s, Sqx * lanes + h, nqx); Simd.St(ref s, Sqy * lanes + h, nqy);
+                Simd.St(ref s, Sqz * lanes + h, nqz); Simd.St(ref s, Sqw * lanes + h, nqw);
             }
         }
         if (rows < 2) return;
@@ -149,11 +153,12 @@ public sealed partial class FastBendSystem
     {
         var vx = Simd.Ld(ref d, p.Ovx + r); var vy = Simd.Ld(ref d, p.Ovy + r); var vz = Simd.Ld(ref d, p.Ovz + r);
         var wx = vx + (dx - c.Reaction * nx) * c.InvH; var wy = vy + (dy - c.Reaction * ny) * c.InvH; var wz = vz + (dz - c.Reaction * nz) * c.InvH;
-        var speed = Vector.SquareRoot(wx * wx + wy * wy + wz * wz);
-        var over = Vector.GreaterThan(speed, c.MaxSpeed);
+        // Squared speeds compared, the root taken only where a lane is over the limit.
+        var speedSq = wx * wx + wy * wy + wz * wz;
+        var over = Vector.GreaterThan(speedSq, c.MaxSpeedSq);
         if (!Vector.EqualsAll(over, Vector<int>.Zero))
         {
-            var f = c.MaxSpeed / Simd.Sel(over, speed, V.One);
+            var f = c.MaxSpeed / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
             wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
         }
         Simd.St(ref d, p.Ovx + r, Simd.Sel(free, wx, vx));

@@ -16,11 +16,11 @@ public sealed partial class FastBendSystem
     /// <summary>Sweep constants broadcast to 16 lanes.</summary>
     private readonly struct Consts16
     {
-        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed;
+        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed, MaxSpeedSq;
 
         public Consts16(in SweepParams p)
         {
-            H = Vector512.Create(p.H); InvH = Vector512.Create(p.InvH); Reaction = Vector512.Create(p.Reaction); MaxSpeed = Vector512.Create(p.MaxSpeed);
+            H = Vector512.Create(p.H); InvH = Vector512.Create(p.InvH); Reaction = Vector512.Create(p.Reaction); MaxSpeed = Vector512.Create(p.MaxSpeed); MaxSpeedSq = Vector512.Create(p.MaxSpeed * p.MaxSpeed);
             FallX = Vector512.Create(p.FallX); FallY = Vector512.Create(p.FallY); FallZ = Vector512.Create(p.FallZ);
             Eps = Vector512.Create(1e-6f); Flip = Vector512.Create(-0.9999f);
         }
@@ -63,16 +63,19 @@ public sealed partial class FastBendSystem
                 var len = Vector512.Sqrt(ex * ex + ey * ey + ez * ez);
                 var hasLen = Vector512.GreaterThan(len, zero);
                 var inv = Sel16(hasLen, one / Sel16(hasLen, len, one), zero);
+                var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
                 // Target: the rest direction turned by the frame carried from the root (v' = v + 2w(q×v) + 2q×(q×v)).
-                var cx = qy * rz - qz * ry; var cy = qz * rx - qx * rz; var cz = qx * ry - qy * rx;
-                var ccx = qy * cz - qz * cy; var ccy = qz * cx - qx * cz; var ccz = qx * cy - qy * cx;
-                var tx = rx + (qw * cx + ccx) * 2f; var ty = ry + (qw * cy + ccy) * 2f; var tz = rz + (qw * cz + ccz) * 2f;
-                var restOk = Vector512.GreaterThan(rx * rx + ry * ry + rz * rz, zero);
-                tx = Sel16(restOk, tx, Sel16(hasLen, ex * inv, zero));
-                ty = Sel16(restOk, ty, Sel16(hasLen, ey * inv, Vector512.Create(-1f)));
-                tz = Sel16(restOk, tz, Sel16(hasLen, ez * inv, zero));
+                // With c = 2q×v (the doubling by adds: the sweep is bound by its multiplies): v' = v + w·c + q×c.
+                var q2x = qx + qx; var q2y = qy + qy; var q2z = qz + qz;
+                var cx = q2y * rz - q2z * ry; var cy = q2z * rx - q2x * rz; var cz = q2x * ry - q2y * rx;
+                var tx = rx + qw * cx + (qy * cz - qz * cy); var ty = ry + qw * cy + (qz * cx - qx * cz); var tz = rz + qw * cz + (qx * cy - qy * cx);
+                // A rest direction to turn (any component non-zero, by bits: no multiplies).
+                var restOk = ~Vector512.Equals((rx.AsUInt32() | ry.AsUInt32() | rz.AsUInt32()) & Vector512.Create(0x7fffffffu), Vector512<uint>.Zero).AsSingle();
+                tx = Sel16(restOk, tx, Sel16(hasLen, ux0, zero));
+                ty = Sel16(restOk, ty, Sel16(hasLen, uy0, Vector512.Create(-1f)));
+                tz = Sel16(restOk, tz, Sel16(hasLen, uz0, zero));
                 var okLen = Vector512.GreaterThan(len, c.Eps * rl) & hasLen;
-                var dx = Sel16(okLen, ex * inv, tx); var dy = Sel16(okLen, ey * inv, ty); var dz = Sel16(okLen, ez * inv, tz);
+                var dx = Sel16(okLen, ux0, tx); var dy = Sel16(okLen, uy0, ty); var dz = Sel16(okLen, uz0, tz);
                 // How far this segment turned since the substep's start (see BendSystem).
                 var hvx = c.H * Ld16(ref d, p.Ovx + r); var hvy = c.H * Ld16(ref d, p.Ovy + r); var hvz = c.H * Ld16(ref d, p.Ovz + r);
                 var ux = hvx - Ld16(ref s, Sux * lanes + h); var uy = hvy - Ld16(ref s, Suy * lanes + h); var uz = hvz - Ld16(ref s, Suz * lanes + h);
@@ -116,15 +119,16 @@ public sealed partial class FastBendSystem
                 var fx = ty * dz - tz * dy; var fy = tz * dx - tx * dz; var fz = tx * dy - ty * dx; var fw = one + dot;
                 var flip = Vector512.LessThan(dot, c.Flip);
                 fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw);
-                var fInv = one / Vector512.Sqrt(fx * fx + fy * fy + fz * fz + fw * fw);
+                // |f|² = 2(1 + t·d) for unit t and d, so one root normalises f, and f∘q stays a unit frame without
+                // a second (q is rebuilt from the head each substep, so the rounding cannot build up).
+                var fInv = one / Vector512.Sqrt(Sel16(flip, one, fw + fw));
                 fx *= fInv; fy *= fInv; fz *= fInv; fw *= fInv;
                 var nqx = fw * qx + fx * qw + fy * qz - fz * qy;
                 var nqy = fw * qy - fx * qz + fy * qw + fz * qx;
                 var nqz = fw * qz + fx * qy - fy * qx + fz * qw;
                 var nqw = fw * qw - fx * qx - fy * qy - fz * qz;
-                var qInv = one / Vector512.Sqrt(nqx * nqx + nqy * nqy + nqz * nqz + nqw * nqw);
-                St16(ref s, Sqx * lanes + h, nqx * qInv); St16(ref s, Sqy * lanes + h, nqy * qInv);
-                St16(ref s, Sqz * lanes + h, nqz * qInv); St16(ref s, Sqw * lanes + h, nqw * qInv);
+                St16(ref s, Sqx * lanes + h, nqx); St16(ref s, Sqy * lanes + h, nqy);
+                St16(ref s, Sqz * lanes + h, nqz); St16(ref s, Sqw * lanes + h, nqw);
             }
         }
         if (rows < 2) return;
@@ -139,11 +143,12 @@ public sealed partial class FastBendSystem
     {
         var vx = Ld16(ref d, p.Ovx + r); var vy = Ld16(ref d, p.Ovy + r); var vz = Ld16(ref d, p.Ovz + r);
         var wx = vx + (dx - c.Reaction * nx) * c.InvH; var wy = vy + (dy - c.Reaction * ny) * c.InvH; var wz = vz + (dz - c.Reaction * nz) * c.InvH;
-        var speed = Vector512.Sqrt(wx * wx + wy * wy + wz * wz);
-        var over = Vector512.GreaterThan(speed, c.MaxSpeed);
+        // Squared speeds compared, the root taken only where a lane is over the limit.
+        var speedSq = wx * wx + wy * wy + wz * wz;
+        var over = Vector512.GreaterThan(speedSq, c.MaxSpeedSq);
         if (over != V.Zero)
         {
-            var f = c.MaxSpeed / Sel16(over, speed, V.One);
+            var f = c.MaxSpeed / Sel16(over, Vector512.Sqrt(speedSq), V.One);
             wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
         }
         St16(ref d, p.Ovx + r, Sel16(free, wx, vx));

@@ -223,7 +223,7 @@ internal sealed class StrandChunkRunner
         Load(w.PosX, first, tile, StrandChunk.X); Load(w.PosY, first, tile, StrandChunk.Y); Load(w.PosZ, first, tile, StrandChunk.Z);
         Load(w.VelX, first, tile, StrandChunk.VelX); Load(w.VelY, first, tile, StrandChunk.VelY); Load(w.VelZ, first, tile, StrandChunk.VelZ);
         Load(w.InvMass, first, tile, StrandChunk.InvMass);
-        uint cutLanes = _cutThisFrame ? SavePastCuts(w, s0, first, tile, pastCuts) : 0u;
+        uint cutLanes = _cutThisFrame ? SavePastCuts(w, s0, tile, pastCuts) : 0u;
         if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, tile, StrandChunk.RestLength);
         if ((_needs & ChunkFields.Shape) != 0)
         {
@@ -240,50 +240,56 @@ internal sealed class StrandChunkRunner
             for (int k = 0; k < _chunkSystems.Length; k++)
             {
                 if (_chunkSystems[k].RunChunk(scene, ctx, s, chunk)) { prefetch.Next(slice); continue; }
+                if (cutLanes != 0) RestorePastCuts(w, s0, cutLanes, tile, pastCuts);
                 Store(tile, first, w);
-                if (cutLanes != 0) RestorePastCuts(w, s0, first, cutLanes, pastCuts);
                 RunOrdinary(scene, ctx, s0, s0 + StrandChunk.Lanes, s, k);
                 return false;
             }
+        if (cutLanes != 0) RestorePastCuts(w, s0, cutLanes, tile, pastCuts);
         Store(tile, first, w);
-        if (cutLanes != 0) RestorePastCuts(w, s0, first, cutLanes, pastCuts);
         return true;
     }
 
     /// <summary>Position and velocity: what a chunk stores, so what must be put back past a cut.</summary>
     private const int PastCutFields = 6;
+    private static ReadOnlySpan<int> StoredFields => [StrandChunk.X, StrandChunk.Y, StrandChunk.Z, StrandChunk.VelX, StrandChunk.VelY, StrandChunk.VelZ];
 
     /// <summary>
     /// Masks the particles past each lane's cut as pins in the chunk (InvMass 0: no system moves them into a live
-    /// one's way) and keeps their world values, which the full-row store overwrites. Returns the cut lanes as bits.
+    /// one's way) and keeps their loaded values, which go back into the chunk before it is stored (all in L1).
+    /// Returns the cut lanes as bits.
     /// </summary>
-    private static uint SavePastCuts(HairWorld w, int s0, int first, scoped StrandScratch tile, Span<float> saved)
+    private static uint SavePastCuts(HairWorld w, int s0, scoped StrandScratch tile, Span<float> saved)
     {
         uint lanes = 0;
-        ref float m = ref tile.Data[tile.Offset(StrandChunk.InvMass)];
+        ref float data = ref tile.Data[0];
+        ref float m = ref Unsafe.Add(ref data, tile.Offset(StrandChunk.InvMass));
         for (int l = 0; l < StrandChunk.Lanes; l++)
         {
             int n = w.StrandParticleCount[s0 + l];
             if (n == StrandChunk.Rows) continue;
             lanes |= 1u << l;
             for (int k = n; k < StrandChunk.Rows; k++) Unsafe.Add(ref m, k * StrandChunk.Lanes + l) = 0f;
-            int from = first + l * StrandChunk.Rows + n, count = StrandChunk.Rows - n, at = l * StrandChunk.Rows + n;
-            ReadOnlySpan<float[]> fields = [w.PosX, w.PosY, w.PosZ, w.VelX, w.VelY, w.VelZ];
             for (int f = 0; f < PastCutFields; f++)
-                fields[f].AsSpan(from, count).CopyTo(saved.Slice(f * StrandChunk.Cells + at, count));
+            {
+                ref float row0 = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + l);
+                for (int k = n; k < StrandChunk.Rows; k++) saved[f * StrandChunk.Cells + k * StrandChunk.Lanes + l] = Unsafe.Add(ref row0, k * StrandChunk.Lanes);
+            }
         }
         return lanes;
     }
 
-    private static void RestorePastCuts(HairWorld w, int s0, int first, uint lanes, ReadOnlySpan<float> saved)
+    private static void RestorePastCuts(HairWorld w, int s0, uint lanes, scoped StrandScratch tile, ReadOnlySpan<float> saved)
     {
+        ref float data = ref tile.Data[0];
         for (; lanes != 0; lanes &= lanes - 1)
         {
             int l = BitOperations.TrailingZeroCount(lanes), n = w.StrandParticleCount[s0 + l];
-            int to = first + l * StrandChunk.Rows + n, count = StrandChunk.Rows - n, at = l * StrandChunk.Rows + n;
-            ReadOnlySpan<float[]> fields = [w.PosX, w.PosY, w.PosZ, w.VelX, w.VelY, w.VelZ];
             for (int f = 0; f < PastCutFields; f++)
-                saved.Slice(f * StrandChunk.Cells + at, count).CopyTo(fields[f].AsSpan(to, count));
+            {
+                ref float row0 = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + l);
+                for (int k = n; k < StrandChunk.Rows; k++) Unsafe.Add(ref row0, k * StrandChunk.Lanes) = saved[f * StrandChunk.Cells + k * StrandChunk.Lanes + l];
+            }
         }
     }
 
