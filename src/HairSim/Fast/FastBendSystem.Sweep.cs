@@ -129,9 +129,9 @@ public sealed partial class FastBendSystem
                 var fx = ty * dz - tz * dy; var fy = tz * dx - tx * dz; var fz = tx * dy - ty * dx; var fw = one + dot;
                 var flip = Vector.LessThan(dot, c.Flip);
                 fx = Simd.Sel(flip, zero, fx); fy = Simd.Sel(flip, zero, fy); fz = Simd.Sel(flip, zero, fz); fw = Simd.Sel(flip, one, fw);
-                // |f|² = 2(1 + t·d) for unit t and d, so one root normalises f, and f∘q stays a unit frame without
-                // a second (q is rebuilt from the head each substep, so the rounding cannot build up).
-                var fInv = one / Vector.SquareRoot(Simd.Sel(flip, one, fw + fw));
+                // f normalised by its own length (not 2(1 + t·d), which amplifies any error in |t| near a flip), and
+                // f∘q left as it is: a product of unit quaternions, and q is rebuilt from the head every substep.
+                var fInv = one / Vector.SquareRoot(fx * fx + fy * fy + fz * fz + fw * fw);
                 fx *= fInv; fy *= fInv; fz *= fInv; fw *= fInv;
                 var nqx = fw * qx + fx * qw + fy * qz - fz * qy;
                 var nqy = fw * qy - fx * qz + fy * qw + fz * qx;

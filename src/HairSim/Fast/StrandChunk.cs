@@ -252,7 +252,7 @@ internal sealed class StrandChunkRunner
 
     /// <summary>Position and velocity: what a chunk stores, so what must be put back past a cut.</summary>
     private const int PastCutFields = 6;
-    private static ReadOnlySpan<int> StoredFields => [StrandChunk.X, StrandChunk.Y, StrandChunk.Z, StrandChunk.VelX, StrandChunk.VelY, StrandChunk.VelZ];
+    private static readonly int[] StoredFields = [StrandChunk.X, StrandChunk.Y, StrandChunk.Z, StrandChunk.VelX, StrandChunk.VelY, StrandChunk.VelZ];
 
     /// <summary>
     /// Masks the particles past each lane's cut as pins in the chunk (InvMass 0: no system moves them into a live
