@@ -62,7 +62,10 @@ public sealed partial class FastBendSystem
                 var ex = x - px; var ey = y - py; var ez = z - pz;
                 var len = Vector512.Sqrt(ex * ex + ey * ey + ez * ez);
                 var hasLen = Vector512.GreaterThan(len, zero);
-                var inv = Sel16(hasLen, one / Sel16(hasLen, len, one), zero);
+                // Masks that are all set (the common case: every lane a live, moving, non-degenerate segment) make
+                // their selects identities, so those are skipped: the same bits with fewer operations.
+                bool allLen = AllSet(hasLen);
+                var inv = allLen ? one / len : Sel16(hasLen, one / Sel16(hasLen, len, one), zero);
                 var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
                 // Target: the rest direction turned by the frame carried from the root (v' = v + 2w(q×v) + 2q×(q×v)).
                 // With c = 2q×v (the doubling by adds: the sweep is bound by its multiplies): v' = v + w·c + q×c.
@@ -71,11 +74,15 @@ public sealed partial class FastBendSystem
                 var tx = rx + qw * cx + (qy * cz - qz * cy); var ty = ry + qw * cy + (qz * cx - qx * cz); var tz = rz + qw * cz + (qx * cy - qy * cx);
                 // A rest direction to turn (any component non-zero, by bits: no multiplies).
                 var restOk = ~Vector512.Equals((rx.AsUInt32() | ry.AsUInt32() | rz.AsUInt32()) & Vector512.Create(0x7fffffffu), Vector512<uint>.Zero).AsSingle();
-                tx = Sel16(restOk, tx, Sel16(hasLen, ux0, zero));
-                ty = Sel16(restOk, ty, Sel16(hasLen, uy0, Vector512.Create(-1f)));
-                tz = Sel16(restOk, tz, Sel16(hasLen, uz0, zero));
+                if (!AllSet(restOk))
+                {
+                    tx = Sel16(restOk, tx, Sel16(hasLen, ux0, zero));
+                    ty = Sel16(restOk, ty, Sel16(hasLen, uy0, Vector512.Create(-1f)));
+                    tz = Sel16(restOk, tz, Sel16(hasLen, uz0, zero));
+                }
                 var okLen = Vector512.GreaterThan(len, c.Eps * rl) & hasLen;
-                var dx = Sel16(okLen, ux0, tx); var dy = Sel16(okLen, uy0, ty); var dz = Sel16(okLen, uz0, tz);
+                V dx = ux0, dy = uy0, dz = uz0;
+                if (!AllSet(okLen)) { dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz); }
                 // How far this segment turned since the substep's start (see BendSystem).
                 var hvx = c.H * Ld16(ref d, p.Ovx + r); var hvy = c.H * Ld16(ref d, p.Ovy + r); var hvz = c.H * Ld16(ref d, p.Ovz + r);
                 var ux = hvx - Ld16(ref s, Sux * lanes + h); var uy = hvy - Ld16(ref s, Suy * lanes + h); var uz = hvz - Ld16(ref s, Suz * lanes + h);
@@ -93,17 +100,29 @@ public sealed partial class FastBendSystem
                 var mx = tx + a * ox + b * sx; var my = ty + a * oy + b * sy; var mz = tz + a * oz + b * sz;
                 var ml = Vector512.Sqrt(mx * mx + my * my + mz * mz);
                 var mOk = Vector512.GreaterThan(ml, c.Eps);
-                var invM = one / Sel16(mOk, ml, one);
-                var ndx = Sel16(mOk, mx * invM, tx); var ndy = Sel16(mOk, my * invM, ty); var ndz = Sel16(mOk, mz * invM, tz);
-                dx = Sel16(free, ndx, dx); dy = Sel16(free, ndy, dy); dz = Sel16(free, ndz, dz);
+                bool allFree = AllSet(free);
+                if (AllSet(mOk))
+                {
+                    var invM = one / ml;
+                    if (allFree) { dx = mx * invM; dy = my * invM; dz = mz * invM; }
+                    else { dx = Sel16(free, mx * invM, dx); dy = Sel16(free, my * invM, dy); dz = Sel16(free, mz * invM, dz); }
+                }
+                else
+                {
+                    var invM = one / Sel16(mOk, ml, one);
+                    var ndx = Sel16(mOk, mx * invM, tx); var ndy = Sel16(mOk, my * invM, ty); var ndz = Sel16(mOk, mz * invM, tz);
+                    dx = Sel16(free, ndx, dx); dy = Sel16(free, ndy, dy); dz = Sel16(free, ndz, dz);
+                }
                 var nx = px + dx * rl; var ny = py + dy * rl; var nz = pz + dz * rl;
-                var cdx = Sel16(free, nx - x, zero); var cdy = Sel16(free, ny - y, zero); var cdz = Sel16(free, nz - z, zero);
+                V cdx = nx - x, cdy = ny - y, cdz = nz - z;
+                if (!allFree) { cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
                 x += cdx; y += cdy; z += cdz;
                 St16(ref d, p.Ox + r, x); St16(ref d, p.Oy + r, y); St16(ref d, p.Oz + r, z);
                 // The row above takes its kick now that this row's correction is known.
                 Kick16(ref d, in p, in c, r - lanes, (Ld16(ref s, SFree * lanes + h)),
                     Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h),
-                    cdx + Sel16(free, c.FallX, zero), cdy + Sel16(free, c.FallY, zero), cdz + Sel16(free, c.FallZ, zero));
+                    cdx + (allFree ? c.FallX : Sel16(free, c.FallX, zero)), cdy + (allFree ? c.FallY : Sel16(free, c.FallY, zero)),
+                    cdz + (allFree ? c.FallZ : Sel16(free, c.FallZ, zero)));
                 St16(ref s, SDx * lanes + h, cdx); St16(ref s, SDy * lanes + h, cdy); St16(ref s, SDz * lanes + h, cdz);
                 St16(ref s, SFree * lanes + h, free);
                 // This segment's turn over the substep so far, for its child.
@@ -118,7 +137,7 @@ public sealed partial class FastBendSystem
                 var dot = tx * dx + ty * dy + tz * dz;
                 var fx = ty * dz - tz * dy; var fy = tz * dx - tx * dz; var fz = tx * dy - ty * dx; var fw = one + dot;
                 var flip = Vector512.LessThan(dot, c.Flip);
-                fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw);
+                if (flip != V.Zero) { fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw); }
                 // f normalised by its own length (not 2(1 + t·d), which amplifies any error in |t| near a flip), and
                 // f∘q left as it is: a product of unit quaternions, and q is rebuilt from the head every substep.
                 var fInv = one / Vector512.Sqrt(fx * fx + fy * fy + fz * fz + fw * fw);
@@ -151,10 +170,15 @@ public sealed partial class FastBendSystem
             var f = c.MaxSpeed / Sel16(over, Vector512.Sqrt(speedSq), V.One);
             wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
         }
-        St16(ref d, p.Ovx + r, Sel16(free, wx, vx));
-        St16(ref d, p.Ovy + r, Sel16(free, wy, vy));
-        St16(ref d, p.Ovz + r, Sel16(free, wz, vz));
+        if (!AllSet(free)) { wx = Sel16(free, wx, vx); wy = Sel16(free, wy, vy); wz = Sel16(free, wz, vz); }
+        St16(ref d, p.Ovx + r, wx);
+        St16(ref d, p.Ovy + r, wy);
+        St16(ref d, p.Ovz + r, wz);
     }
+
+    /// <summary>Every lane of the mask set.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static bool AllSet(V mask) => Vector512.EqualsAll(mask.AsInt32(), Vector512<int>.AllBitsSet);
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static V Ld16(ref float r, int i) => Vector512.LoadUnsafe(ref r, (nuint)i);
