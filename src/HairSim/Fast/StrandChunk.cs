@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Runtime.Intrinsics.X86;
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using System.Runtime.Intrinsics;
 
 namespace HairSim.Fast;
@@ -223,7 +224,7 @@ internal sealed class StrandChunkRunner
         Load(w.PosX, first, tile, StrandChunk.X); Load(w.PosY, first, tile, StrandChunk.Y); Load(w.PosZ, first, tile, StrandChunk.Z);
         Load(w.VelX, first, tile, StrandChunk.VelX); Load(w.VelY, first, tile, StrandChunk.VelY); Load(w.VelZ, first, tile, StrandChunk.VelZ);
         Load(w.InvMass, first, tile, StrandChunk.InvMass);
-        uint cutLanes = _cutThisFrame ? SavePastCuts(w, s0, tile, pastCuts) : 0u;
+        int cutFrom = _cutThisFrame ? SavePastCuts(w, s0, tile, pastCuts) : StrandChunk.Rows;
         if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, tile, StrandChunk.RestLength);
         if ((_needs & ChunkFields.Shape) != 0)
         {
@@ -240,12 +241,12 @@ internal sealed class StrandChunkRunner
             for (int k = 0; k < _chunkSystems.Length; k++)
             {
                 if (_chunkSystems[k].RunChunk(scene, ctx, s, chunk)) { prefetch.Next(slice); continue; }
-                if (cutLanes != 0) RestorePastCuts(w, s0, cutLanes, tile, pastCuts);
+                if (cutFrom < StrandChunk.Rows) RestorePastCuts(w, s0, cutFrom, tile, pastCuts);
                 Store(tile, first, w);
                 RunOrdinary(scene, ctx, s0, s0 + StrandChunk.Lanes, s, k);
                 return false;
             }
-        if (cutLanes != 0) RestorePastCuts(w, s0, cutLanes, tile, pastCuts);
+        if (cutFrom < StrandChunk.Rows) RestorePastCuts(w, s0, cutFrom, tile, pastCuts);
         Store(tile, first, w);
         return true;
     }
@@ -256,41 +257,66 @@ internal sealed class StrandChunkRunner
 
     /// <summary>
     /// Masks the particles past each lane's cut as pins in the chunk (InvMass 0: no system moves them into a live
-    /// one's way) and keeps their loaded values, which go back into the chunk before it is stored (all in L1).
-    /// Returns the cut lanes as bits.
+    /// one's way) and keeps the rows that hold them, which go back into the chunk under the same masks before it is
+    /// stored (row-wise, all in L1). Returns the first row holding a particle past a cut (16: none).
     /// </summary>
-    private static uint SavePastCuts(HairWorld w, int s0, scoped StrandScratch tile, Span<float> saved)
+    private static int SavePastCuts(HairWorld w, int s0, scoped StrandScratch tile, Span<float> saved)
     {
-        uint lanes = 0;
+        int from = StrandChunk.Rows;
+        for (int l = 0; l < StrandChunk.Lanes; l++) from = Math.Min(from, w.StrandParticleCount[s0 + l]);
+        if (from >= StrandChunk.Rows) return StrandChunk.Rows;
+        var (lo, hi) = LiveCounts(w, s0);
         ref float data = ref tile.Data[0];
-        ref float m = ref Unsafe.Add(ref data, tile.Offset(StrandChunk.InvMass));
-        for (int l = 0; l < StrandChunk.Lanes; l++)
+        ref float sv = ref saved[0];
+        for (int k = from; k < StrandChunk.Rows; k++)
         {
-            int n = w.StrandParticleCount[s0 + l];
-            if (n == StrandChunk.Rows) continue;
-            lanes |= 1u << l;
-            for (int k = n; k < StrandChunk.Rows; k++) Unsafe.Add(ref m, k * StrandChunk.Lanes + l) = 0f;
+            var (deadLo, deadHi) = Dead(lo, hi, k);
+            ref float m = ref Unsafe.Add(ref data, tile.Offset(StrandChunk.InvMass) + k * StrandChunk.Lanes);
+            Vector512.ConditionalSelect(deadLo, Vector512<float>.Zero, Vector512.LoadUnsafe(ref m)).StoreUnsafe(ref m);
+            Vector512.ConditionalSelect(deadHi, Vector512<float>.Zero, Vector512.LoadUnsafe(ref m, 16)).StoreUnsafe(ref m, 16);
             for (int f = 0; f < PastCutFields; f++)
             {
-                ref float row0 = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + l);
-                for (int k = n; k < StrandChunk.Rows; k++) saved[f * StrandChunk.Cells + k * StrandChunk.Lanes + l] = Unsafe.Add(ref row0, k * StrandChunk.Lanes);
+                ref float row = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + k * StrandChunk.Lanes);
+                ref float keep = ref Unsafe.Add(ref sv, f * StrandChunk.Cells + k * StrandChunk.Lanes);
+                Vector512.LoadUnsafe(ref row).StoreUnsafe(ref keep);
+                Vector512.LoadUnsafe(ref row, 16).StoreUnsafe(ref keep, 16);
             }
         }
-        return lanes;
+        return from;
     }
 
-    private static void RestorePastCuts(HairWorld w, int s0, uint lanes, scoped StrandScratch tile, ReadOnlySpan<float> saved)
+    private static void RestorePastCuts(HairWorld w, int s0, int from, scoped StrandScratch tile, ReadOnlySpan<float> saved)
     {
+        var (lo, hi) = LiveCounts(w, s0);
         ref float data = ref tile.Data[0];
-        for (; lanes != 0; lanes &= lanes - 1)
+        ref float sv = ref MemoryMarshal.GetReference(saved);
+        for (int k = from; k < StrandChunk.Rows; k++)
         {
-            int l = BitOperations.TrailingZeroCount(lanes), n = w.StrandParticleCount[s0 + l];
+            var (deadLo, deadHi) = Dead(lo, hi, k);
             for (int f = 0; f < PastCutFields; f++)
             {
-                ref float row0 = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + l);
-                for (int k = n; k < StrandChunk.Rows; k++) Unsafe.Add(ref row0, k * StrandChunk.Lanes) = saved[f * StrandChunk.Cells + k * StrandChunk.Lanes + l];
+                ref float row = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + k * StrandChunk.Lanes);
+                ref float keep = ref Unsafe.Add(ref sv, f * StrandChunk.Cells + k * StrandChunk.Lanes);
+                Vector512.ConditionalSelect(deadLo, Vector512.LoadUnsafe(ref keep), Vector512.LoadUnsafe(ref row)).StoreUnsafe(ref row);
+                Vector512.ConditionalSelect(deadHi, Vector512.LoadUnsafe(ref keep, 16), Vector512.LoadUnsafe(ref row, 16)).StoreUnsafe(ref row, 16);
             }
         }
+    }
+
+    /// <summary>The live particle counts of the chunk's 32 strands, as two 16-lane halves.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static (Vector512<int> Lo, Vector512<int> Hi) LiveCounts(HairWorld w, int s0)
+    {
+        ref int n = ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(w.StrandParticleCount), s0);
+        return (Vector512.LoadUnsafe(ref n), Vector512.LoadUnsafe(ref n, 16));
+    }
+
+    /// <summary>Lanes whose particle in row k is past the strand's cut, as float masks.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static (Vector512<float> Lo, Vector512<float> Hi) Dead(Vector512<int> lo, Vector512<int> hi, int k)
+    {
+        var row = Vector512.Create(k);
+        return (Vector512.LessThanOrEqual(lo, row).AsSingle(), Vector512.LessThanOrEqual(hi, row).AsSingle());
     }
 
     /// <summary>Substeps from <paramref name="fromSubstep"/> (its systems from <paramref name="fromSystem"/>) of strands [begin, end), system by system.</summary>
