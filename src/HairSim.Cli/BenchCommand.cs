@@ -15,7 +15,7 @@ namespace HairSim.Cli;
 /// </summary>
 public static class BenchCommand
 {
-    public const string Help = "time reference vs fast path (reference scene + 1k … 100k strands, per system): --frames 60 --warmup 20 --threads N --scales 1000,4000,17400,50000,100000 --rounds 5 --no-systems --out docs/performance.md";
+    public const string Help = "time reference vs fast path (reference scene + 1k … 100k strands, per system): --frames 60 --warmup 20 --threads N --scales 1000,4000,17400,50000,100000 --rounds 5 --lengths 3,8,12,16,17,32,64 --no-systems --out docs/performance.md";
 
     private static readonly CultureInfo Inv = CultureInfo.InvariantCulture;
 
@@ -36,6 +36,7 @@ public static class BenchCommand
         string scalesText = a.String("scales", "1000,4000,17400,50000,100000");
         bool systems = !a.Flag("no-systems");
         int rounds = a.Int("rounds", 5);
+        string lengthsText = a.String("lengths", "3,8,12,16,17,32,64");
         string? outPath = a.String("out");
         a.RejectUnknown();
         if (frames < 3 || frames > 100_000) throw new ArgumentException("--frames must be in 3 … 100000.");
@@ -48,6 +49,14 @@ public static class BenchCommand
             if (!int.TryParse(part, NumberStyles.Integer, Inv, out int n) || n < 40 || n > 400_000)
                 throw new ArgumentException($"--scales expects strand counts in 40 … 400000, got '{part}'.");
             scales.Add(n);
+        }
+
+        var lengths = new List<int>();
+        foreach (var part in lengthsText.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries))
+        {
+            if (!int.TryParse(part, NumberStyles.Integer, Inv, out int n) || n < 2 || n > 256)
+                throw new ArgumentException($"--lengths expects particles per strand in 2 … 256, got '{part}'.");
+            lengths.Add(n);
         }
 
         var command = "dotnet run -c Release --project src/HairSim.Cli -- bench" + (Environment.GetCommandLineArgs().Length > 2
@@ -104,6 +113,16 @@ public static class BenchCommand
             }
         }
 
+        // Particles per strand: the reference scene's strand count at other strand lengths, on every core, so the cost
+        // per particle-step of each length can be set against the best one (the fast path should not be tuned to one length).
+        foreach (int n in lengths)
+        {
+            var g = GroomSettings.Reference();
+            g.ParticlesPerStrand = n;
+            g.PinnedPerStrand = Math.Min(g.PinnedPerStrand, n - 1);
+            rows.Add(Frame(LengthScene(n), g, SolverPath.Fast, threads > 1 ? parallel : SequentialDispatcher.Instance, threads, warmup, frames));
+        }
+
         if (systems)
         {
             var groom = GroomSettings.Reference();
@@ -125,6 +144,8 @@ public static class BenchCommand
         if (outPath != null) WriteDoc(outPath, table, command, rows, chunkPairs, threads, frames, warmup, rounds);
         return 0;
     }
+
+    private static string LengthScene(int particles) => $"17,400 strands × {particles} particles";
 
     private static HairScene Scene(GroomSettings groom, SolverPath path, BendModel bend = BendModel.RestShape)
     {
@@ -316,6 +337,14 @@ public static class BenchCommand
             var source = Find(Ref, "fast, source's triples"); var sourceStyled = Find(Ref + ", styled", "fast, source's triples");
             if (plain != null && styledRow != null && source != null && sourceStyled != null)
                 sb.AppendLine(string.Create(Inv, $"Styled vs uncut, {n} thread{(n == 1 ? "" : "s")}: the default bend model {plain.MedianMs:F2} → {styledRow.MedianMs:F2} ms/frame styled (**{styledRow.MedianMs / plain.MedianMs:F2}×**); the source's triples (the former default) {source.MedianMs:F2} → {sourceStyled.MedianMs:F2} ms/frame (**{sourceStyled.MedianMs / source.MedianMs:F2}×**). The default model against the former default on the uncut groom: **{plain.MedianMs / source.MedianMs:F2}×**, styled: **{styledRow.MedianMs / source.MedianMs:F2}×** (target for styled and uncut: at most 1.3× the former default uncut)."));
+        }
+        var byLength = rows.FindAll(r => r.Scene.StartsWith("17,400 strands × ", StringComparison.Ordinal) && r.Path == "fast");
+        if (byLength.Count > 1)
+        {
+            double best = byLength.Min(r => r.MedianMs / (r.Particles * (double)r.Substeps));
+            var parts = byLength.Select(r => string.Create(Inv, $"{r.Particles / 17_400} → {1e6 * r.MedianMs / (r.Particles * (double)r.Substeps):F2} ns ({r.MedianMs / (r.Particles * (double)r.Substeps) / best:F2}×)"));
+            double worst = byLength.Max(r => r.MedianMs / (r.Particles * (double)r.Substeps)) / best;
+            sb.AppendLine(string.Create(Inv, $"Particles per strand, 17,400 strands, default model, {byLength[0].Threads} thread{(byLength[0].Threads == 1 ? "" : "s")}: cost per particle-step (and against the best length) {string.Join("; ", parts)}. Worst against best: **{worst:F2}×** (issue 13's target: within 1.3×)."));
         }
         foreach (var (on, off) in chunkPairs)
             sb.AppendLine(string.Create(Inv, $"Strand chunks vs the same fast path system by system, {off.Scene}, {off.Threads} thread{(off.Threads == 1 ? "" : "s")}, interleaved in one simulation (blocks of 10 frames, {off.Frames} each): {off.MedianMs:F2} → {on.MedianMs:F2} ms/frame (**{off.MedianMs / on.MedianMs:F2}×**)."));

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 namespace HairSim.Fast;
 
 /// <summary>
@@ -29,13 +30,34 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
     {
         if (!_chunkActive) return;
         for (int s = s0; s < s0 + StrandChunk.Lanes; s++) EnsureCache(w, s, _chunkSag, _chunkH, _chunkZeta);
-        int first = w.StrandFirst[s0];
+        int first = w.StrandFirst[s0], height = chunk.Height;
         var t = chunk.Tile;
-        Transpose.StrandsIn(_restX, first, StrandChunk.Rows, t, StrandChunk.BendRestX, StrandChunk.Lanes);
-        Transpose.StrandsIn(_restY, first, StrandChunk.Rows, t, StrandChunk.BendRestY, StrandChunk.Lanes);
-        Transpose.StrandsIn(_restZ, first, StrandChunk.Rows, t, StrandChunk.BendRestZ, StrandChunk.Lanes);
-        Transpose.StrandsIn(_jointA, first, StrandChunk.Rows, t, StrandChunk.BendA, StrandChunk.Lanes);
-        Transpose.StrandsIn(_jointB, first, StrandChunk.Rows, t, StrandChunk.BendB, StrandChunk.Lanes);
+        if (height == StrandChunk.Rows)
+        {
+            Transpose.StrandsIn(_restX, first, StrandChunk.Rows, t, StrandChunk.BendRestX, StrandChunk.Lanes);
+            Transpose.StrandsIn(_restY, first, StrandChunk.Rows, t, StrandChunk.BendRestY, StrandChunk.Lanes);
+            Transpose.StrandsIn(_restZ, first, StrandChunk.Rows, t, StrandChunk.BendRestZ, StrandChunk.Lanes);
+            Transpose.StrandsIn(_jointA, first, StrandChunk.Rows, t, StrandChunk.BendA, StrandChunk.Lanes);
+            Transpose.StrandsIn(_jointB, first, StrandChunk.Rows, t, StrandChunk.BendB, StrandChunk.Lanes);
+            return;
+        }
+        // Shorter strands (the sweep stops at the chunk's height): strided transposes where 16 floats past the last
+        // strand are readable, else element by element; once per chunk and frame.
+        ReadOnlySpan<float[]> src = [_restX, _restY, _restZ, _jointA, _jointB];
+        bool strided = first + (StrandChunk.Lanes - 1) * height + 16 <= _restX.Length;
+        for (int f = 0; f < src.Length; f++)
+        {
+            ref float row0 = ref chunk.Row(StrandChunk.BendRestX + f, 0);
+            ref float s = ref Simd.At(src[f], first);
+            if (strided)
+            {
+                Transpose.In16Strided(ref s, height, ref row0, StrandChunk.Lanes);
+                Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height), height, ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes);
+                continue;
+            }
+            for (int l = 0; l < StrandChunk.Lanes; l++)
+                for (int k = 0; k < height; k++) Unsafe.Add(ref row0, k * StrandChunk.Lanes + l) = Unsafe.Add(ref s, l * height + k);
+        }
     }
 
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
@@ -49,7 +71,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
             t.Offset(StrandChunk.BendRestX), t.Offset(StrandChunk.BendRestY), t.Offset(StrandChunk.BendRestZ),
             t.Offset(StrandChunk.BendA), t.Offset(StrandChunk.BendB));
         ref float d = ref t.Data[0];
-        Sweep16(ref d, ref d, StrandChunk.Rows, in p);
+        Sweep16(ref d, ref d, chunk.Height, in p);
         return true;
     }
 }

@@ -104,7 +104,8 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
             for (int rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
             {
                 int k = BitOperations.TrailingZeroCount(rows), i = first + k;
-                if (w.InvMass[i] != 0f) continue;
+                // A row pinned only by particles past a cut or a shorter capacity holds no pin of this strand.
+                if (k >= w.StrandParticleCount[s] || w.InvMass[i] != 0f) continue;
                 Unsafe.Add(ref chunk.Row(StrandChunk.RestX, k), l) = w.RestX[i];
                 Unsafe.Add(ref chunk.Row(StrandChunk.RestY, k), l) = w.RestY[i];
                 Unsafe.Add(ref chunk.Row(StrandChunk.RestZ, k), l) = w.RestZ[i];
@@ -133,7 +134,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
             ref readonly var delta = ref _chunkCarry;
             ref float px = ref chunk.Row(StrandChunk.X, 0), py = ref chunk.Row(StrandChunk.Y, 0), pz = ref chunk.Row(StrandChunk.Z, 0);
             ref float vx = ref chunk.Row(StrandChunk.VelX, 0), vy = ref chunk.Row(StrandChunk.VelY, 0), vz = ref chunk.Row(StrandChunk.VelZ, 0);
-            for (int i = 0; i < StrandChunk.Cells; i += width)
+            for (int i = 0, cells = chunk.Height * StrandChunk.Lanes; i < cells; i += width)
             {
                 delta.Point(Simd.Ld(ref px, i), Simd.Ld(ref py, i), Simd.Ld(ref pz, i), out var x, out var y, out var z);
                 Simd.St(ref px, i, x); Simd.St(ref py, i, y); Simd.St(ref pz, i, z);

@@ -38,10 +38,15 @@ internal readonly ref struct StrandChunk
     public readonly ReadOnlySpan<int> Firsts;
     /// <summary>Bit k set: row k holds a pinned particle (its rest position is in the rest rows).</summary>
     public readonly int PinnedRows;
+    /// <summary>
+    /// Rows in use: the strands' capacity (2 … 16; all 32 strands of a chunk have the same one). Rows from here on
+    /// hold no particle; they are masked like the particles past a cut and never stored.
+    /// </summary>
+    public readonly int Height;
 
-    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, int pinnedRows)
+    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, int pinnedRows, int height = Rows)
     {
-        Tile = tile; Firsts = firsts; PinnedRows = pinnedRows;
+        Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height;
     }
 
     /// <summary>Row <paramref name="row"/> of a particle field.</summary>
@@ -59,7 +64,7 @@ internal readonly ref struct StrandChunk
         ref float px = ref Row(X, 0), py = ref Row(Y, 0), pz = ref Row(Z, 0);
         ref float vx = ref Row(VelX, 0), vy = ref Row(VelY, 0), vz = ref Row(VelZ, 0), m = ref Row(InvMass, 0);
         ref float rx = ref Row(RestX, 0), ry = ref Row(RestY, 0), rz = ref Row(RestZ, 0);
-        for (int i = 0; i < Cells; i += 16)
+        for (int i = 0, cells = Height * Lanes; i < cells; i += 16)
             kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
                 ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
                 ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
@@ -201,12 +206,16 @@ internal sealed class StrandChunkRunner
     /// </summary>
     private int Refused(HairWorld w, int s0)
     {
-        int first = w.StrandFirst[s0];
+        int first = w.StrandFirst[s0], cap = w.StrandCapacity[s0];
         for (int l = 0; l < StrandChunk.Lanes; l++)
         {
-            int s = s0 + l;
-            if (w.StrandCapacity[s] != StrandChunk.Rows || (w.StrandParticleCount[s] != StrandChunk.Rows && !_cutThisFrame)) return s + 1;
-            if (w.StrandFirst[s] != first + l * StrandChunk.Rows) return s; // not contiguous with s − 1
+            int s = s0 + l, c = w.StrandCapacity[s];
+            // 16 particles; with systems that take cut strands, any capacity from 2 to 16 (the rows past it are masked
+            // as a cut's are), all 32 strands alike.
+            if (c != StrandChunk.Rows && (!_takesCut || c < 2 || c > StrandChunk.Rows)) return s + 1;
+            if (c != cap) return s; // a chunk of the new capacity may start here
+            if (w.StrandParticleCount[s] != c && !_cutThisFrame) return s + 1;
+            if (w.StrandFirst[s] != first + l * cap) return s; // not contiguous with s − 1
         }
         foreach (var c in _chunkSystems)
         {
@@ -220,34 +229,34 @@ internal sealed class StrandChunkRunner
     private bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, ReadOnlySpan<int> firsts, Span<float> pastCuts)
     {
         var w = scene.World;
-        int first = firsts[0];
-        Load(w.PosX, first, tile, StrandChunk.X); Load(w.PosY, first, tile, StrandChunk.Y); Load(w.PosZ, first, tile, StrandChunk.Z);
-        Load(w.VelX, first, tile, StrandChunk.VelX); Load(w.VelY, first, tile, StrandChunk.VelY); Load(w.VelZ, first, tile, StrandChunk.VelZ);
-        Load(w.InvMass, first, tile, StrandChunk.InvMass);
-        int cutFrom = _cutThisFrame ? SavePastCuts(w, s0, tile, pastCuts) : StrandChunk.Rows;
-        if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, tile, StrandChunk.RestLength);
+        int first = firsts[0], height = w.StrandCapacity[s0];
+        Load(w.PosX, first, height, tile, StrandChunk.X); Load(w.PosY, first, height, tile, StrandChunk.Y); Load(w.PosZ, first, height, tile, StrandChunk.Z);
+        Load(w.VelX, first, height, tile, StrandChunk.VelX); Load(w.VelY, first, height, tile, StrandChunk.VelY); Load(w.VelZ, first, height, tile, StrandChunk.VelZ);
+        Load(w.InvMass, first, height, tile, StrandChunk.InvMass);
+        int cutFrom = _takesCut ? SavePastCuts(w, s0, height, tile, pastCuts) : StrandChunk.Rows;
+        if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, height, tile, StrandChunk.RestLength);
         if ((_needs & ChunkFields.Shape) != 0)
         {
-            Load(w.ShapePrev, first, tile, StrandChunk.ShapePrev); Load(w.ShapeMid, first, tile, StrandChunk.ShapeMid);
-            Load(w.ShapeNext, first, tile, StrandChunk.ShapeNext);
+            Load(w.ShapePrev, first, height, tile, StrandChunk.ShapePrev); Load(w.ShapeMid, first, height, tile, StrandChunk.ShapeMid);
+            Load(w.ShapeNext, first, height, tile, StrandChunk.ShapeNext);
         }
-        int pinned = (_needs & ChunkFields.PinRest) != 0 ? PinnedRows(tile) : 0;
-        var chunk = new StrandChunk(tile, firsts, pinned);
+        int pinned = (_needs & ChunkFields.PinRest) != 0 ? PinnedRows(tile, height) : 0;
+        var chunk = new StrandChunk(tile, firsts, pinned, height);
         foreach (var c in _chunkSystems) c.PrepareChunk(w, s0, chunk);
         // The next chunk's data is fetched from memory while this one computes, a slice after each system.
-        var prefetch = new Prefetcher(w, first + StrandChunk.Cells, _needs);
+        var prefetch = new Prefetcher(w, first + StrandChunk.Lanes * height, _needs);
         int slice = (prefetch.Lines + ctx.Substeps * _chunkSystems.Length - 1) / (ctx.Substeps * _chunkSystems.Length);
         for (int s = 0; s < ctx.Substeps; s++)
             for (int k = 0; k < _chunkSystems.Length; k++)
             {
                 if (_chunkSystems[k].RunChunk(scene, ctx, s, chunk)) { prefetch.Next(slice); continue; }
-                if (cutFrom < StrandChunk.Rows) RestorePastCuts(w, s0, cutFrom, tile, pastCuts);
-                Store(tile, first, w);
+                if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tile, pastCuts);
+                Store(tile, first, height, w);
                 RunOrdinary(scene, ctx, s0, s0 + StrandChunk.Lanes, s, k);
                 return false;
             }
-        if (cutFrom < StrandChunk.Rows) RestorePastCuts(w, s0, cutFrom, tile, pastCuts);
-        Store(tile, first, w);
+        if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tile, pastCuts);
+        Store(tile, first, height, w);
         return true;
     }
 
@@ -260,7 +269,7 @@ internal sealed class StrandChunkRunner
     /// one's way) and keeps the rows that hold them, which go back into the chunk under the same masks before it is
     /// stored (row-wise, all in L1). Returns the first row holding a particle past a cut (16: none).
     /// </summary>
-    private static int SavePastCuts(HairWorld w, int s0, scoped StrandScratch tile, Span<float> saved)
+    private static int SavePastCuts(HairWorld w, int s0, int height, scoped StrandScratch tile, Span<float> saved)
     {
         int from = StrandChunk.Rows;
         for (int l = 0; l < StrandChunk.Lanes; l++) from = Math.Min(from, w.StrandParticleCount[s0 + l]);
@@ -274,6 +283,7 @@ internal sealed class StrandChunkRunner
             ref float m = ref Unsafe.Add(ref data, tile.Offset(StrandChunk.InvMass) + k * StrandChunk.Lanes);
             Vector512.ConditionalSelect(deadLo, Vector512<float>.Zero, Vector512.LoadUnsafe(ref m)).StoreUnsafe(ref m);
             Vector512.ConditionalSelect(deadHi, Vector512<float>.Zero, Vector512.LoadUnsafe(ref m, 16)).StoreUnsafe(ref m, 16);
+            if (k >= height) continue; // no particle there: nothing to put back
             for (int f = 0; f < PastCutFields; f++)
             {
                 ref float row = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + k * StrandChunk.Lanes);
@@ -285,12 +295,12 @@ internal sealed class StrandChunkRunner
         return from;
     }
 
-    private static void RestorePastCuts(HairWorld w, int s0, int from, scoped StrandScratch tile, ReadOnlySpan<float> saved)
+    private static void RestorePastCuts(HairWorld w, int s0, int from, int height, scoped StrandScratch tile, ReadOnlySpan<float> saved)
     {
         var (lo, hi) = LiveCounts(w, s0);
         ref float data = ref tile.Data[0];
         ref float sv = ref MemoryMarshal.GetReference(saved);
-        for (int k = from; k < StrandChunk.Rows; k++)
+        for (int k = from; k < height; k++)
         {
             var (deadLo, deadHi) = Dead(lo, hi, k);
             for (int f = 0; f < PastCutFields; f++)
@@ -341,32 +351,58 @@ internal sealed class StrandChunkRunner
     }
 
     /// <summary>Transposes 32 strands of a world field into the chunk's rows (two 16 × 16 blocks).</summary>
-    private static void Load(float[] src, int first, scoped StrandScratch tile, int field)
+    private static void Load(float[] src, int first, int height, scoped StrandScratch tile, int field)
     {
         ref float row0 = ref tile.Data[tile.Offset(field)];
+        if (height != StrandChunk.Rows)
+        {
+            // Other capacities: 16 × 16 transposes with the strands' stride where 16 floats past the last strand are
+            // readable (rows past the capacity then hold the next strands' particles, masked), else element by element.
+            ref float s = ref Simd.At(src, first);
+            if (first + (StrandChunk.Lanes - 1) * height + 16 <= src.Length)
+            {
+                Transpose.In16Strided(ref s, height, ref row0, StrandChunk.Lanes);
+                Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height), height, ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes);
+                return;
+            }
+            for (int l = 0; l < StrandChunk.Lanes; l++)
+                for (int k = 0; k < height; k++) Unsafe.Add(ref row0, k * StrandChunk.Lanes + l) = Unsafe.Add(ref s, l * height + k);
+            MemoryMarshal.CreateSpan(ref Unsafe.Add(ref row0, height * StrandChunk.Lanes), (StrandChunk.Rows - height) * StrandChunk.Lanes).Clear();
+            return;
+        }
         Transpose.In16Wide(ref Simd.At(src, first), ref row0, StrandChunk.Lanes);
         Transpose.In16Wide(ref Simd.At(src, first + 16 * StrandChunk.Rows), ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes);
     }
 
-    private static void Store(scoped StrandScratch tile, int first, HairWorld w)
+    private static void Store(scoped StrandScratch tile, int first, int height, HairWorld w)
     {
-        Store(tile, StrandChunk.X, w.PosX, first); Store(tile, StrandChunk.Y, w.PosY, first); Store(tile, StrandChunk.Z, w.PosZ, first);
-        Store(tile, StrandChunk.VelX, w.VelX, first); Store(tile, StrandChunk.VelY, w.VelY, first); Store(tile, StrandChunk.VelZ, w.VelZ, first);
+        Store(tile, StrandChunk.X, w.PosX, first, height); Store(tile, StrandChunk.Y, w.PosY, first, height); Store(tile, StrandChunk.Z, w.PosZ, first, height);
+        Store(tile, StrandChunk.VelX, w.VelX, first, height); Store(tile, StrandChunk.VelY, w.VelY, first, height); Store(tile, StrandChunk.VelZ, w.VelZ, first, height);
     }
 
-    private static void Store(scoped StrandScratch tile, int field, float[] dst, int first)
+    private static void Store(scoped StrandScratch tile, int field, float[] dst, int first, int height)
     {
         ref float row0 = ref tile.Data[tile.Offset(field)];
+        if (height != StrandChunk.Rows)
+        {
+            // Other capacities: strands stored whole, in order (each spill into the next strand is overwritten by it),
+            // except those whose 16 floats would reach past the chunk's last strand: nothing outside the chunk is touched.
+            ref float d = ref Simd.At(dst, first);
+            int chunkEnd = StrandChunk.Lanes * height, whole = Math.Min(StrandChunk.Lanes, (chunkEnd - 16) / height + 1);
+            Transpose.Out16Strided(ref row0, StrandChunk.Lanes, ref d, height, Math.Min(16, whole));
+            Transpose.Out16Strided(ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes, ref Unsafe.Add(ref d, 16 * height), height, Math.Max(0, whole - 16));
+            return;
+        }
         Transpose.Out16Wide(ref row0, StrandChunk.Lanes, ref Simd.At(dst, first), add: false);
         Transpose.Out16Wide(ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes, ref Simd.At(dst, first + 16 * StrandChunk.Rows), add: false);
     }
 
     /// <summary>The rows holding pinned particles (inverse mass 0), as bits.</summary>
-    private static int PinnedRows(scoped StrandScratch tile)
+    private static int PinnedRows(scoped StrandScratch tile, int height)
     {
         int rows = 0;
         ref float m = ref tile.Data[tile.Offset(StrandChunk.InvMass)];
-        for (int k = 0; k < StrandChunk.Rows; k++)
+        for (int k = 0; k < height; k++)
         {
             ref float row = ref Unsafe.Add(ref m, k * StrandChunk.Lanes);
             var zero = Vector512.Equals(Vector512.LoadUnsafe(ref row), Vector512<float>.Zero)

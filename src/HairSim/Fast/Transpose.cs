@@ -57,6 +57,47 @@ internal static class Transpose
     }
 
     /// <summary>
+    /// 16 strands of capacity <paramref name="stride"/> ≤ 16, back to back, into rows (row k = particle k of each):
+    /// 16 floats are read from each strand's start, so rows past the capacity hold the next strand's particles (the
+    /// caller masks them) and the caller must leave 16 − stride floats readable past the last strand.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    public static void In16Strided(ref float strands, int stride, ref float tile, int lanes)
+    {
+        Block16(ref strands, stride, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
+            out var o8, out var o9, out var o10, out var o11, out var o12, out var o13, out var o14, out var o15);
+        St16(ref tile, 0, o0); St16(ref tile, lanes, o1); St16(ref tile, 2 * lanes, o2); St16(ref tile, 3 * lanes, o3);
+        St16(ref tile, 4 * lanes, o4); St16(ref tile, 5 * lanes, o5); St16(ref tile, 6 * lanes, o6); St16(ref tile, 7 * lanes, o7);
+        St16(ref tile, 8 * lanes, o8); St16(ref tile, 9 * lanes, o9); St16(ref tile, 10 * lanes, o10); St16(ref tile, 11 * lanes, o11);
+        St16(ref tile, 12 * lanes, o12); St16(ref tile, 13 * lanes, o13); St16(ref tile, 14 * lanes, o14); St16(ref tile, 15 * lanes, o15);
+    }
+
+    /// <summary>
+    /// The inverse of <see cref="In16Strided"/>: strands 0 … <paramref name="whole"/> − 1 are stored as 16 floats, in
+    /// order, so what spills into strand i + 1 is overwritten by strand i + 1's own store; the rest only up to their
+    /// capacity (the caller sets <paramref name="whole"/> so that no store reaches past its strands).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    public static void Out16Strided(ref float tile, int lanes, ref float strands, int stride, int whole)
+    {
+        Block16(ref tile, lanes, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
+            out var o8, out var o9, out var o10, out var o11, out var o12, out var o13, out var o14, out var o15);
+        PutStrand(ref strands, 0, stride, whole, o0); PutStrand(ref strands, 1, stride, whole, o1); PutStrand(ref strands, 2, stride, whole, o2);
+        PutStrand(ref strands, 3, stride, whole, o3); PutStrand(ref strands, 4, stride, whole, o4); PutStrand(ref strands, 5, stride, whole, o5);
+        PutStrand(ref strands, 6, stride, whole, o6); PutStrand(ref strands, 7, stride, whole, o7); PutStrand(ref strands, 8, stride, whole, o8);
+        PutStrand(ref strands, 9, stride, whole, o9); PutStrand(ref strands, 10, stride, whole, o10); PutStrand(ref strands, 11, stride, whole, o11);
+        PutStrand(ref strands, 12, stride, whole, o12); PutStrand(ref strands, 13, stride, whole, o13); PutStrand(ref strands, 14, stride, whole, o14);
+        PutStrand(ref strands, 15, stride, whole, o15);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void PutStrand(ref float strands, int i, int stride, int whole, Vector512<float> v)
+    {
+        if (i < whole) { St16(ref strands, i * stride, v); return; }
+        for (int k = 0; k < stride; k++) Unsafe.Add(ref strands, i * stride + k) = v.GetElement(k);
+    }
+
+    /// <summary>
     /// Rows src[i·stride … +15] (i = 0 … 15) transposed: o_j[i] = src[i·stride + j]. Unpack and shufps build 4 × 4
     /// blocks inside each 128-bit lane; two rounds of 128-bit lane shuffles put the blocks in place.
     /// </summary>

@@ -46,7 +46,9 @@ public class StrandChunkTests(ITestOutputHelper output)
                 // The default bend model takes bent rest shapes in chunks too (only the source's triples refuse them).
                 or "rest" or "rest-bent" or "rest-soft" or "rest-speed-limit" or "rest-all-colliders" or "limp"
                 // and cut strands (particles past a cut ride along as pins and are put back as they were).
-                or "rest-cut" or "rest-cut-mixed";
+                or "rest-cut" or "rest-cut-mixed"
+                // and strands of any capacity up to 16 (the rows past it masked like a cut).
+                or "rest-short8" or "rest-p12" or "rest-p3";
             if (ChunksExpected && chunkable) Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
             // No run of 32 whole 16-particle strands (cut, cut-mixed, short8), or settings the chunk kernels leave to the plain path.
             // The source's triples and length sweep keep cut strands on their own path.
@@ -120,6 +122,22 @@ public class StrandChunkTests(ITestOutputHelper output)
             }
         }
         Assert.True(past > 0 && live > 0, $"{past} particles past cuts, {live} live particles moved");
+    }
+
+    [Fact]
+    public void ShortStrandsCutInChunksGiveTheBitsOfTheSystemBySystemPath()
+    {
+        var chunked = FastPathScenes.Build("rest-p12", SolverPath.Fast);
+        var plain = FastPathScenes.Build("rest-p12", SolverPath.Fast);
+        foreach (var w in new[] { chunked.World, plain.World })
+        {
+            // Capacity 12, live counts 2 … 12: the rows past each cut and past the capacity masked alike.
+            for (int s = 0; s < w.StrandCount; s++) w.StrandParticleCount[s] = 2 + (s * 5) % 11;
+            w.MarkEdited();
+        }
+        var (simC, simP) = Pair(chunked, plain);
+        for (int f = 1; f <= 5; f++) StepBoth(simC, simP, f);
+        if (ChunksExpected) Assert.Equal(4, simC.Pipeline.LastFrameChunks.Stepped);
     }
 
     [Fact]

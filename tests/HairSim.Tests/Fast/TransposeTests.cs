@@ -55,4 +55,29 @@ public class TransposeTests
         for (int i = 0; i < 256; i++) Assert.Equal(add ? before[i] + s[i] : s[i], back[i]);
         for (int i = 256; i < back.Length; i++) Assert.Equal(before[i], back[i]); // nothing written past the 16 strands
     }
+
+    [Theory]
+    [InlineData(2, 16)]
+    [InlineData(3, 16)]
+    [InlineData(3, 11)]
+    [InlineData(12, 15)]
+    public void StridedTransposesMoveShortStrandsAndWriteNothingPastThem(int stride, int whole)
+    {
+        if (!FastPathInfo.Avx512) return; // only strand chunks (AVX-512) use them
+        // 16 strands of `stride` particles, then guard values that a store must not touch.
+        var src = new float[16 * stride + 16];
+        for (int i = 0; i < src.Length; i++) src[i] = i * 0.75f + 1f;
+        var tile = new float[16 * Lanes];
+        Transpose.In16Strided(ref src[0], stride, ref tile[0], Lanes);
+        for (int l = 0; l < 16; l++)
+            for (int k = 0; k < stride; k++)
+                Assert.Equal(src[l * stride + k], tile[k * Lanes + l]);
+        var dst = new float[src.Length];
+        Array.Fill(dst, -1f);
+        // Strands past `whole` are written element by element, so the guard past the 16th strand stays put.
+        Transpose.Out16Strided(ref tile[0], Lanes, ref dst[0], stride, whole);
+        for (int i = 0; i < 16 * stride; i++) Assert.Equal(src[i], dst[i]);
+        if (15 * stride + 16 > 16 * stride && whole < 16)
+            for (int i = 16 * stride; i < dst.Length; i++) Assert.Equal(-1f, dst[i]);
+    }
 }
