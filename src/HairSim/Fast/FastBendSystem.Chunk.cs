@@ -44,15 +44,20 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         // Shorter strands (the sweep stops at the chunk's height): strided transposes where 16 floats past the last
         // strand are readable, else element by element; once per chunk and frame.
         ReadOnlySpan<float[]> src = [_restX, _restY, _restZ, _jointA, _jointB];
-        bool strided = first + (StrandChunk.Lanes - 1) * height + 16 <= _restX.Length;
+        int blocks = (height + 15) / 16;
+        bool strided = first + (StrandChunk.Lanes - 1) * height + 16 * blocks <= _restX.Length;
         for (int f = 0; f < src.Length; f++)
         {
             ref float row0 = ref chunk.Row(StrandChunk.BendRestX + f, 0);
             ref float s = ref Simd.At(src[f], first);
             if (strided)
             {
-                Transpose.In16Strided(ref s, height, ref row0, StrandChunk.Lanes);
-                Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height), height, ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes);
+                for (int b = 0; b < blocks; b++)
+                {
+                    ref float rows = ref Unsafe.Add(ref row0, 16 * b * StrandChunk.Lanes);
+                    Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * b), height, ref rows, StrandChunk.Lanes);
+                    Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height + 16 * b), height, ref Unsafe.Add(ref rows, 16), StrandChunk.Lanes);
+                }
                 continue;
             }
             for (int l = 0; l < StrandChunk.Lanes; l++)

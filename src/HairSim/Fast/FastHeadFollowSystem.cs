@@ -78,7 +78,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     /// </summary>
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
     {
-        for (int rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
+        for (ulong rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
         {
             int k = BitOperations.TrailingZeroCount(rows);
             for (int f = StrandChunk.RestX; f <= StrandChunk.RestZ; f++)
@@ -101,7 +101,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
                 }
                 continue;
             }
-            for (int rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
+            for (ulong rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
             {
                 int k = BitOperations.TrailingZeroCount(rows), i = first + k;
                 // A row pinned only by particles past a cut or a shorter capacity holds no pin of this strand.
@@ -144,7 +144,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         }
         if (chunk.PinnedRows == 0) return true;
         ref readonly var kernel = ref _chunkPins[substep];
-        for (int rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
+        for (ulong rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
         {
             int k = BitOperations.TrailingZeroCount(rows);
             for (int l = 0; l < StrandChunk.Lanes; l += width)

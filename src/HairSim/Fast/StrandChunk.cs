@@ -17,6 +17,8 @@ namespace HairSim.Fast;
 internal readonly ref struct StrandChunk
 {
     public const int Lanes = 32, Rows = 16, Cells = Lanes * Rows;
+    /// <summary>The tallest chunk: strands of up to 64 particles ride in chunks (the tile is sized per frame to the groom's longest strand).</summary>
+    public const int MaxRows = 64;
 
     public const int X = FastLengthSystem.TX, Y = FastLengthSystem.TY, Z = FastLengthSystem.TZ,
         KickX = FastLengthSystem.TVx, KickY = FastLengthSystem.TVy, KickZ = FastLengthSystem.TVz,
@@ -31,20 +33,23 @@ internal readonly ref struct StrandChunk
     /// <summary>Rows −1 … 16: goal rows past both ends stay zero, so goal sums need no masks.</summary>
     public const int Capacity = (Rows + 2) * Lanes;
 
-    public static int Size => StrandScratch.Size(Capacity, FieldCount);
+    /// <summary>Floats per field of a tile <paramref name="rows"/> tall (two spare rows for the goals).</summary>
+    public static int CapacityFor(int rows) => (rows + 2) * Lanes;
+
+    public static int SizeFor(int rows) => StrandScratch.Size(CapacityFor(rows), FieldCount);
 
     public readonly StrandScratch Tile;
     /// <summary>First particle of each lane's strand.</summary>
     public readonly ReadOnlySpan<int> Firsts;
     /// <summary>Bit k set: row k holds a pinned particle (its rest position is in the rest rows).</summary>
-    public readonly int PinnedRows;
+    public readonly ulong PinnedRows;
     /// <summary>
-    /// Rows in use: the strands' capacity (2 … 16; all 32 strands of a chunk have the same one). Rows from here on
-    /// hold no particle; they are masked like the particles past a cut and never stored.
+    /// Rows in use: the strands' capacity (2 … 64; all 32 strands of a chunk have the same one). Rows from here on
+    /// hold no particle of the strand; they are masked like the particles past a cut and never stored.
     /// </summary>
     public readonly int Height;
 
-    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, int pinnedRows, int height = Rows)
+    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, ulong pinnedRows, int height = Rows)
     {
         Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height;
     }
@@ -173,25 +178,28 @@ internal sealed class StrandChunkRunner
     public void Run(HairScene scene, FrameContext ctx, int begin, int end)
     {
         var w = scene.World;
-        var tile = new StrandScratch(stackalloc float[StrandChunk.Size], StrandChunk.Capacity);
+        // As tall as the groom's longest strand needs (16 rows for the source's systems; up to 64 with the default ones):
+        // 71 KB of stack for 16 rows, 262 KB for 64.
+        int tileRows = _takesCut ? Math.Clamp((w.MaxStrandCapacity + 15) / 16 * 16, StrandChunk.Rows, StrandChunk.MaxRows) : StrandChunk.Rows; // whole 16-row blocks
+        var tile = new StrandScratch(stackalloc float[StrandChunk.SizeFor(tileRows)], StrandChunk.CapacityFor(tileRows));
         Span<int> firsts = stackalloc int[StrandChunk.Lanes];
         // The particles past each cut, as they were: written back after the chunk is stored (they never move).
-        Span<float> pastCuts = _takesCut ? stackalloc float[PastCutFields * StrandChunk.Cells] : default;
+        Span<float> pastCuts = _takesCut ? stackalloc float[PastCutFields * StrandChunk.Lanes * tileRows] : default;
         bool cleared = false;
         int ordinaryFrom = begin, stepped = 0, handedBack = 0;
         for (int s0 = begin; s0 + StrandChunk.Lanes <= end;)
         {
-            int next = Refused(w, s0);
+            int next = Refused(w, s0, tileRows);
             if (next > s0)
             {
                 s0 = next;
                 continue;
             }
             if (ordinaryFrom < s0) RunOrdinary(scene, ctx, ordinaryFrom, s0, 0, 0);
-            if (!cleared) { ClearFixedRows(tile); cleared = true; }
+            if (!cleared) { ClearFixedRows(tile, tileRows); cleared = true; }
             for (int l = 0; l < StrandChunk.Lanes; l++) firsts[l] = w.StrandFirst[s0 + l];
             stepped++;
-            if (!RunChunk(scene, ctx, s0, tile, firsts, pastCuts)) handedBack++;
+            if (!RunChunk(scene, ctx, s0, tile, tileRows, firsts, pastCuts)) handedBack++;
             s0 += StrandChunk.Lanes;
             ordinaryFrom = s0;
         }
@@ -204,15 +212,15 @@ internal sealed class StrandChunkRunner
     /// s0 when the 32 strands from s0 make a chunk (whole, 16 particles, back to back, accepted by every system);
     /// else the first strand a chunk could start at (every chunk starting before it holds the strand that failed).
     /// </summary>
-    private int Refused(HairWorld w, int s0)
+    private int Refused(HairWorld w, int s0, int tileRows)
     {
         int first = w.StrandFirst[s0], cap = w.StrandCapacity[s0];
         for (int l = 0; l < StrandChunk.Lanes; l++)
         {
             int s = s0 + l, c = w.StrandCapacity[s];
-            // 16 particles; with systems that take cut strands, any capacity from 2 to 16 (the rows past it are masked
-            // as a cut's are), all 32 strands alike.
-            if (c != StrandChunk.Rows && (!_takesCut || c < 2 || c > StrandChunk.Rows)) return s + 1;
+            // 16 particles; with systems that take cut strands, any capacity from 2 to the tile's height (the rows past
+            // it are masked as a cut's are), all 32 strands alike.
+            if (c != StrandChunk.Rows && (!_takesCut || c < 2 || c > tileRows)) return s + 1;
             if (c != cap) return s; // a chunk of the new capacity may start here
             if (w.StrandParticleCount[s] != c && !_cutThisFrame) return s + 1;
             if (w.StrandFirst[s] != first + l * cap) return s; // not contiguous with s − 1
@@ -226,36 +234,36 @@ internal sealed class StrandChunkRunner
     }
 
     /// <summary>One chunk through all substeps; false if a system handed it back to the ordinary path midway.</summary>
-    private bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, ReadOnlySpan<int> firsts, Span<float> pastCuts)
+    private bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, int tileRows, ReadOnlySpan<int> firsts, Span<float> pastCuts)
     {
         var w = scene.World;
         int first = firsts[0], height = w.StrandCapacity[s0];
         Load(w.PosX, first, height, tile, StrandChunk.X); Load(w.PosY, first, height, tile, StrandChunk.Y); Load(w.PosZ, first, height, tile, StrandChunk.Z);
         Load(w.VelX, first, height, tile, StrandChunk.VelX); Load(w.VelY, first, height, tile, StrandChunk.VelY); Load(w.VelZ, first, height, tile, StrandChunk.VelZ);
         Load(w.InvMass, first, height, tile, StrandChunk.InvMass);
-        int cutFrom = _takesCut ? SavePastCuts(w, s0, height, tile, pastCuts) : StrandChunk.Rows;
+        int cutFrom = _takesCut ? SavePastCuts(w, s0, height, tileRows, tile, pastCuts) : StrandChunk.Rows;
         if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, height, tile, StrandChunk.RestLength);
         if ((_needs & ChunkFields.Shape) != 0)
         {
             Load(w.ShapePrev, first, height, tile, StrandChunk.ShapePrev); Load(w.ShapeMid, first, height, tile, StrandChunk.ShapeMid);
             Load(w.ShapeNext, first, height, tile, StrandChunk.ShapeNext);
         }
-        int pinned = (_needs & ChunkFields.PinRest) != 0 ? PinnedRows(tile, height) : 0;
+        ulong pinned = (_needs & ChunkFields.PinRest) != 0 ? PinnedRows(tile, height) : 0;
         var chunk = new StrandChunk(tile, firsts, pinned, height);
         foreach (var c in _chunkSystems) c.PrepareChunk(w, s0, chunk);
         // The next chunk's data is fetched from memory while this one computes, a slice after each system.
-        var prefetch = new Prefetcher(w, first + StrandChunk.Lanes * height, _needs);
+        var prefetch = new Prefetcher(w, first + StrandChunk.Lanes * height, height, _needs);
         int slice = (prefetch.Lines + ctx.Substeps * _chunkSystems.Length - 1) / (ctx.Substeps * _chunkSystems.Length);
         for (int s = 0; s < ctx.Substeps; s++)
             for (int k = 0; k < _chunkSystems.Length; k++)
             {
                 if (_chunkSystems[k].RunChunk(scene, ctx, s, chunk)) { prefetch.Next(slice); continue; }
-                if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tile, pastCuts);
+                if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tileRows, tile, pastCuts);
                 Store(tile, first, height, w);
                 RunOrdinary(scene, ctx, s0, s0 + StrandChunk.Lanes, s, k);
                 return false;
             }
-        if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tile, pastCuts);
+        if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tileRows, tile, pastCuts);
         Store(tile, first, height, w);
         return true;
     }
@@ -269,15 +277,15 @@ internal sealed class StrandChunkRunner
     /// one's way) and keeps the rows that hold them, which go back into the chunk under the same masks before it is
     /// stored (row-wise, all in L1). Returns the first row holding a particle past a cut (16: none).
     /// </summary>
-    private static int SavePastCuts(HairWorld w, int s0, int height, scoped StrandScratch tile, Span<float> saved)
+    private static int SavePastCuts(HairWorld w, int s0, int height, int tileRows, scoped StrandScratch tile, Span<float> saved)
     {
-        int from = StrandChunk.Rows;
+        int from = tileRows, cells = StrandChunk.Lanes * tileRows;
         for (int l = 0; l < StrandChunk.Lanes; l++) from = Math.Min(from, w.StrandParticleCount[s0 + l]);
-        if (from >= StrandChunk.Rows) return StrandChunk.Rows;
+        if (from >= tileRows) return tileRows;
         var (lo, hi) = LiveCounts(w, s0);
         ref float data = ref tile.Data[0];
         ref float sv = ref saved[0];
-        for (int k = from; k < StrandChunk.Rows; k++)
+        for (int k = from; k < tileRows; k++)
         {
             var (deadLo, deadHi) = Dead(lo, hi, k);
             ref float m = ref Unsafe.Add(ref data, tile.Offset(StrandChunk.InvMass) + k * StrandChunk.Lanes);
@@ -287,7 +295,7 @@ internal sealed class StrandChunkRunner
             for (int f = 0; f < PastCutFields; f++)
             {
                 ref float row = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + k * StrandChunk.Lanes);
-                ref float keep = ref Unsafe.Add(ref sv, f * StrandChunk.Cells + k * StrandChunk.Lanes);
+                ref float keep = ref Unsafe.Add(ref sv, f * cells + k * StrandChunk.Lanes);
                 Vector512.LoadUnsafe(ref row).StoreUnsafe(ref keep);
                 Vector512.LoadUnsafe(ref row, 16).StoreUnsafe(ref keep, 16);
             }
@@ -295,8 +303,9 @@ internal sealed class StrandChunkRunner
         return from;
     }
 
-    private static void RestorePastCuts(HairWorld w, int s0, int from, int height, scoped StrandScratch tile, ReadOnlySpan<float> saved)
+    private static void RestorePastCuts(HairWorld w, int s0, int from, int height, int tileRows, scoped StrandScratch tile, ReadOnlySpan<float> saved)
     {
+        int cells = StrandChunk.Lanes * tileRows;
         var (lo, hi) = LiveCounts(w, s0);
         ref float data = ref tile.Data[0];
         ref float sv = ref MemoryMarshal.GetReference(saved);
@@ -306,7 +315,7 @@ internal sealed class StrandChunkRunner
             for (int f = 0; f < PastCutFields; f++)
             {
                 ref float row = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + k * StrandChunk.Lanes);
-                ref float keep = ref Unsafe.Add(ref sv, f * StrandChunk.Cells + k * StrandChunk.Lanes);
+                ref float keep = ref Unsafe.Add(ref sv, f * cells + k * StrandChunk.Lanes);
                 Vector512.ConditionalSelect(deadLo, Vector512.LoadUnsafe(ref keep), Vector512.LoadUnsafe(ref row)).StoreUnsafe(ref row);
                 Vector512.ConditionalSelect(deadHi, Vector512.LoadUnsafe(ref keep, 16), Vector512.LoadUnsafe(ref row, 16)).StoreUnsafe(ref row, 16);
             }
@@ -337,12 +346,12 @@ internal sealed class StrandChunkRunner
                 _systems[k].Run(scene, ctx, s, begin, end);
     }
 
-    private static void ClearFixedRows(scoped StrandScratch tile)
+    private static void ClearFixedRows(scoped StrandScratch tile, int tileRows)
     {
         // Goal rows −1, 0, 15 and 16: no triple fills them (triples are 1 … 14).
         for (int g = 0; g < 9; g++)
         {
-            var goal = tile.Data.Slice(tile.Offset(StrandChunk.Goals + g), StrandChunk.Capacity);
+            var goal = tile.Data.Slice(tile.Offset(StrandChunk.Goals + g), StrandChunk.CapacityFor(tileRows));
             goal.Slice(0, 2 * StrandChunk.Lanes).Clear();
             goal.Slice(StrandChunk.Rows * StrandChunk.Lanes, 2 * StrandChunk.Lanes).Clear();
         }
@@ -356,18 +365,24 @@ internal sealed class StrandChunkRunner
         ref float row0 = ref tile.Data[tile.Offset(field)];
         if (height != StrandChunk.Rows)
         {
-            // Other capacities: 16 × 16 transposes with the strands' stride where 16 floats past the last strand are
-            // readable (rows past the capacity then hold the next strands' particles, masked), else element by element.
+            // Other capacities: 16 × 16 transposes with the strands' stride, one block of 16 rows at a time, where 16
+            // floats past the last strand's last block are readable (rows past the capacity then hold the next strands'
+            // particles, masked); else element by element, with the rows past the capacity cleared.
             ref float s = ref Simd.At(src, first);
-            if (first + (StrandChunk.Lanes - 1) * height + 16 <= src.Length)
+            int blocks = (height + 15) / 16;
+            if (first + (StrandChunk.Lanes - 1) * height + 16 * blocks <= src.Length)
             {
-                Transpose.In16Strided(ref s, height, ref row0, StrandChunk.Lanes);
-                Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height), height, ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes);
+                for (int b = 0; b < blocks; b++)
+                {
+                    ref float rows = ref Unsafe.Add(ref row0, 16 * b * StrandChunk.Lanes);
+                    Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * b), height, ref rows, StrandChunk.Lanes);
+                    Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height + 16 * b), height, ref Unsafe.Add(ref rows, 16), StrandChunk.Lanes);
+                }
                 return;
             }
             for (int l = 0; l < StrandChunk.Lanes; l++)
                 for (int k = 0; k < height; k++) Unsafe.Add(ref row0, k * StrandChunk.Lanes + l) = Unsafe.Add(ref s, l * height + k);
-            MemoryMarshal.CreateSpan(ref Unsafe.Add(ref row0, height * StrandChunk.Lanes), (StrandChunk.Rows - height) * StrandChunk.Lanes).Clear();
+            MemoryMarshal.CreateSpan(ref Unsafe.Add(ref row0, height * StrandChunk.Lanes), (16 * blocks - height) * StrandChunk.Lanes).Clear();
             return;
         }
         Transpose.In16Wide(ref Simd.At(src, first), ref row0, StrandChunk.Lanes);
@@ -385,29 +400,41 @@ internal sealed class StrandChunkRunner
         ref float row0 = ref tile.Data[tile.Offset(field)];
         if (height != StrandChunk.Rows)
         {
-            // Other capacities: strands stored whole, in order (each spill into the next strand is overwritten by it),
-            // except those whose 16 floats would reach past the chunk's last strand: nothing outside the chunk is touched.
+            // Other capacities, 16 rows at a time. Whole blocks store 16 floats per strand, inside it. The last block
+            // of a strand whose capacity is not a multiple of 16 spills into the next strand's first block: it goes
+            // first, strands in order (each spill overwritten by the next strand's own store), the rest after it; and
+            // strands whose spill would reach past the chunk store only their own floats.
             ref float d = ref Simd.At(dst, first);
-            int chunkEnd = StrandChunk.Lanes * height, whole = Math.Min(StrandChunk.Lanes, (chunkEnd - 16) / height + 1);
-            Transpose.Out16Strided(ref row0, StrandChunk.Lanes, ref d, height, Math.Min(16, whole));
-            Transpose.Out16Strided(ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes, ref Unsafe.Add(ref d, 16 * height), height, Math.Max(0, whole - 16));
+            int blocks = (height + 15) / 16, last = blocks - 1;
+            int chunkEnd = StrandChunk.Lanes * height;
+            int whole = height % 16 == 0 ? StrandChunk.Lanes : Math.Min(StrandChunk.Lanes, (chunkEnd - 16 - 16 * last) / height + 1);
+            for (int b = last; b >= 0; b--)
+            {
+                int w = b == last ? whole : StrandChunk.Lanes;
+                ref float rows = ref Unsafe.Add(ref row0, 16 * b * StrandChunk.Lanes);
+                Transpose.Out16Strided(ref rows, StrandChunk.Lanes, ref Unsafe.Add(ref d, 16 * b), height, Math.Min(16, w), BlockWidth(height, b));
+                Transpose.Out16Strided(ref Unsafe.Add(ref rows, 16), StrandChunk.Lanes, ref Unsafe.Add(ref d, 16 * height + 16 * b), height, Math.Max(0, w - 16), BlockWidth(height, b));
+            }
             return;
         }
         Transpose.Out16Wide(ref row0, StrandChunk.Lanes, ref Simd.At(dst, first), add: false);
         Transpose.Out16Wide(ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes, ref Simd.At(dst, first + 16 * StrandChunk.Rows), add: false);
     }
 
+    /// <summary>Particles of block b (rows 16b …) a strand of this capacity has.</summary>
+    private static int BlockWidth(int height, int b) => Math.Min(16, height - 16 * b);
+
     /// <summary>The rows holding pinned particles (inverse mass 0), as bits.</summary>
-    private static int PinnedRows(scoped StrandScratch tile, int height)
+    private static ulong PinnedRows(scoped StrandScratch tile, int height)
     {
-        int rows = 0;
+        ulong rows = 0;
         ref float m = ref tile.Data[tile.Offset(StrandChunk.InvMass)];
         for (int k = 0; k < height; k++)
         {
             ref float row = ref Unsafe.Add(ref m, k * StrandChunk.Lanes);
             var zero = Vector512.Equals(Vector512.LoadUnsafe(ref row), Vector512<float>.Zero)
                        | Vector512.Equals(Vector512.LoadUnsafe(ref row, 16), Vector512<float>.Zero);
-            if (zero != Vector512<float>.Zero) rows |= 1 << k;
+            if (zero != Vector512<float>.Zero) rows |= 1UL << k;
         }
         return rows;
     }
@@ -421,23 +448,25 @@ internal sealed class StrandChunkRunner
 /// </summary>
 internal unsafe struct Prefetcher
 {
-    private const int LinesPerField = StrandChunk.Cells * sizeof(float) / 64, MaxFields = 11;
+    private const int MaxFields = 11;
     private fixed long _field[MaxFields];
     private int _cursor;
+    private readonly int _linesPerField;
 
-    public Prefetcher(HairWorld w, int first, ChunkFields needs)
+    public Prefetcher(HairWorld w, int first, int height, ChunkFields needs)
     {
         _cursor = 0;
-        int n = 0;
+        int n = 0, cells = StrandChunk.Lanes * height;
+        _linesPerField = cells * sizeof(float) / 64;
         // Nothing past the world's end.
-        if (first + StrandChunk.Cells <= w.ParticleCount && Sse.IsSupported)
+        if (first + cells <= w.ParticleCount && Sse.IsSupported)
         {
             Add(w.PosX, first, ref n); Add(w.PosY, first, ref n); Add(w.PosZ, first, ref n);
             Add(w.VelX, first, ref n); Add(w.VelY, first, ref n); Add(w.VelZ, first, ref n); Add(w.InvMass, first, ref n);
             if ((needs & ChunkFields.RestLength) != 0) Add(w.RestLength, first, ref n);
             if ((needs & ChunkFields.Shape) != 0) { Add(w.ShapePrev, first, ref n); Add(w.ShapeMid, first, ref n); Add(w.ShapeNext, first, ref n); }
         }
-        Lines = n * LinesPerField;
+        Lines = n * _linesPerField;
     }
 
     private void Add(float[] a, int first, ref int n) => _field[n++] = (long)Unsafe.AsPointer(ref Simd.At(a, first));
@@ -449,8 +478,8 @@ internal unsafe struct Prefetcher
     {
         for (int stop = Math.Min(Lines, _cursor + count); _cursor < stop; _cursor++)
         {
-            int f = _cursor / LinesPerField;
-            Sse.Prefetch1((byte*)_field[f] + (_cursor - f * LinesPerField) * 64);
+            int f = _cursor / _linesPerField;
+            Sse.Prefetch1((byte*)_field[f] + (_cursor - f * _linesPerField) * 64);
         }
     }
 }

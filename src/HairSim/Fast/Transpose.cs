@@ -74,27 +74,27 @@ internal static class Transpose
 
     /// <summary>
     /// The inverse of <see cref="In16Strided"/>: strands 0 … <paramref name="whole"/> − 1 are stored as 16 floats, in
-    /// order, so what spills into strand i + 1 is overwritten by strand i + 1's own store; the rest only up to their
-    /// capacity (the caller sets <paramref name="whole"/> so that no store reaches past its strands).
+    /// order, so what spills into strand i + 1 is overwritten by strand i + 1's own store; the rest only their first
+    /// <paramref name="width"/> floats (the caller sets <paramref name="whole"/> so that no store reaches past its strands).
     /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
-    public static void Out16Strided(ref float tile, int lanes, ref float strands, int stride, int whole)
+    public static void Out16Strided(ref float tile, int lanes, ref float strands, int stride, int whole, int width)
     {
         Block16(ref tile, lanes, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
             out var o8, out var o9, out var o10, out var o11, out var o12, out var o13, out var o14, out var o15);
-        PutStrand(ref strands, 0, stride, whole, o0); PutStrand(ref strands, 1, stride, whole, o1); PutStrand(ref strands, 2, stride, whole, o2);
-        PutStrand(ref strands, 3, stride, whole, o3); PutStrand(ref strands, 4, stride, whole, o4); PutStrand(ref strands, 5, stride, whole, o5);
-        PutStrand(ref strands, 6, stride, whole, o6); PutStrand(ref strands, 7, stride, whole, o7); PutStrand(ref strands, 8, stride, whole, o8);
-        PutStrand(ref strands, 9, stride, whole, o9); PutStrand(ref strands, 10, stride, whole, o10); PutStrand(ref strands, 11, stride, whole, o11);
-        PutStrand(ref strands, 12, stride, whole, o12); PutStrand(ref strands, 13, stride, whole, o13); PutStrand(ref strands, 14, stride, whole, o14);
-        PutStrand(ref strands, 15, stride, whole, o15);
+        PutStrand(ref strands, 0, stride, whole, width, o0); PutStrand(ref strands, 1, stride, whole, width, o1); PutStrand(ref strands, 2, stride, whole, width, o2);
+        PutStrand(ref strands, 3, stride, whole, width, o3); PutStrand(ref strands, 4, stride, whole, width, o4); PutStrand(ref strands, 5, stride, whole, width, o5);
+        PutStrand(ref strands, 6, stride, whole, width, o6); PutStrand(ref strands, 7, stride, whole, width, o7); PutStrand(ref strands, 8, stride, whole, width, o8);
+        PutStrand(ref strands, 9, stride, whole, width, o9); PutStrand(ref strands, 10, stride, whole, width, o10); PutStrand(ref strands, 11, stride, whole, width, o11);
+        PutStrand(ref strands, 12, stride, whole, width, o12); PutStrand(ref strands, 13, stride, whole, width, o13); PutStrand(ref strands, 14, stride, whole, width, o14);
+        PutStrand(ref strands, 15, stride, whole, width, o15);
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void PutStrand(ref float strands, int i, int stride, int whole, Vector512<float> v)
+    private static void PutStrand(ref float strands, int i, int stride, int whole, int width, Vector512<float> v)
     {
         if (i < whole) { St16(ref strands, i * stride, v); return; }
-        for (int k = 0; k < stride; k++) Unsafe.Add(ref strands, i * stride + k) = v.GetElement(k);
+        for (int k = 0; k < width; k++) Unsafe.Add(ref strands, i * stride + k) = v.GetElement(k);
     }
 
     /// <summary>

@@ -12,7 +12,7 @@ internal static class FastPathScenes
         "literal", "length-none", "pbd", "global-shape", "speed-limit", "one-pin", "no-colliders",
         "cut-mixed",
         // The default bend model (BendModel.RestShape), on the draped groom, cut, styled, odd lengths and other length modes.
-        "rest", "rest-cut", "rest-cut-mixed", "rest-short8", "rest-p12", "rest-p3", "rest-bent", "rest-odd-lengths", "rest-soft", "rest-speed-limit", "rest-all-colliders", "limp",
+        "rest", "rest-cut", "rest-cut-mixed", "rest-short8", "rest-p12", "rest-p3", "rest-p17", "rest-p40", "rest-p64", "rest-bent", "rest-odd-lengths", "rest-soft", "rest-speed-limit", "rest-all-colliders", "limp",
     ];
 
     /// <summary>Scenes of the default bend model (the others run the source's triple shape matching).</summary>
@@ -35,6 +35,9 @@ internal static class FastPathScenes
             case "short8": g.ParticlesPerStrand = 8; break;
             case "p12": g.ParticlesPerStrand = 12; break;
             case "p3": g.ParticlesPerStrand = 3; break;
+            case "p17": g.ParticlesPerStrand = 17; break;
+            case "p40": g.ParticlesPerStrand = 40; break;
+            case "p64": g.ParticlesPerStrand = 64; break;
             case "literal": st.Mode = ShapeMatchMode.LiteralForce; st.Alpha = 400f; break;
             case "length-none": st.Length = LengthMode.None; break;
             case "pbd": st.Length = LengthMode.Pbd; st.LengthIterations = 3; break;

@@ -47,8 +47,8 @@ public class StrandChunkTests(ITestOutputHelper output)
                 or "rest" or "rest-bent" or "rest-soft" or "rest-speed-limit" or "rest-all-colliders" or "limp"
                 // and cut strands (particles past a cut ride along as pins and are put back as they were).
                 or "rest-cut" or "rest-cut-mixed"
-                // and strands of any capacity up to 16 (the rows past it masked like a cut).
-                or "rest-short8" or "rest-p12" or "rest-p3";
+                // and strands of any capacity up to 64 (the rows past it masked like a cut).
+                or "rest-short8" or "rest-p12" or "rest-p3" or "rest-p17" or "rest-p40" or "rest-p64";
             if (ChunksExpected && chunkable) Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
             // No run of 32 whole 16-particle strands (cut, cut-mixed, short8), or settings the chunk kernels leave to the plain path.
             // The source's triples and length sweep keep cut strands on their own path.
@@ -124,15 +124,17 @@ public class StrandChunkTests(ITestOutputHelper output)
         Assert.True(past > 0 && live > 0, $"{past} particles past cuts, {live} live particles moved");
     }
 
-    [Fact]
-    public void ShortStrandsCutInChunksGiveTheBitsOfTheSystemBySystemPath()
+    [Theory]
+    [InlineData("rest-p12")]
+    [InlineData("rest-p40")]
+    public void ShorterAndLongerStrandsCutInChunksGiveTheBitsOfTheSystemBySystemPath(string scene)
     {
-        var chunked = FastPathScenes.Build("rest-p12", SolverPath.Fast);
-        var plain = FastPathScenes.Build("rest-p12", SolverPath.Fast);
+        var chunked = FastPathScenes.Build(scene, SolverPath.Fast);
+        var plain = FastPathScenes.Build(scene, SolverPath.Fast);
         foreach (var w in new[] { chunked.World, plain.World })
         {
-            // Capacity 12, live counts 2 … 12: the rows past each cut and past the capacity masked alike.
-            for (int s = 0; s < w.StrandCount; s++) w.StrandParticleCount[s] = 2 + (s * 5) % 11;
+            // Live counts 2 … capacity: the rows past each cut and past the capacity masked alike.
+            for (int s = 0; s < w.StrandCount; s++) w.StrandParticleCount[s] = 2 + (s * 5) % (w.StrandCapacity[s] - 1);
             w.MarkEdited();
         }
         var (simC, simP) = Pair(chunked, plain);

@@ -75,7 +75,7 @@ public class TransposeTests
         var dst = new float[src.Length];
         Array.Fill(dst, -1f);
         // Strands past `whole` are written element by element, so the guard past the 16th strand stays put.
-        Transpose.Out16Strided(ref tile[0], Lanes, ref dst[0], stride, whole);
+        Transpose.Out16Strided(ref tile[0], Lanes, ref dst[0], stride, whole, stride);
         for (int i = 0; i < 16 * stride; i++) Assert.Equal(src[i], dst[i]);
         if (15 * stride + 16 > 16 * stride && whole < 16)
             for (int i = 16 * stride; i < dst.Length; i++) Assert.Equal(-1f, dst[i]);
