@@ -31,38 +31,11 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         if (!_chunkActive) return;
         for (int s = s0; s < s0 + StrandChunk.Lanes; s++) EnsureCache(w, s, _chunkSag, _chunkH, _chunkZeta);
         int first = w.StrandFirst[s0], height = chunk.Height;
-        var t = chunk.Tile;
-        if (height == StrandChunk.Rows)
-        {
-            Transpose.StrandsIn(_restX, first, StrandChunk.Rows, t, StrandChunk.BendRestX, StrandChunk.Lanes);
-            Transpose.StrandsIn(_restY, first, StrandChunk.Rows, t, StrandChunk.BendRestY, StrandChunk.Lanes);
-            Transpose.StrandsIn(_restZ, first, StrandChunk.Rows, t, StrandChunk.BendRestZ, StrandChunk.Lanes);
-            Transpose.StrandsIn(_jointA, first, StrandChunk.Rows, t, StrandChunk.BendA, StrandChunk.Lanes);
-            Transpose.StrandsIn(_jointB, first, StrandChunk.Rows, t, StrandChunk.BendB, StrandChunk.Lanes);
-            return;
-        }
-        // Shorter strands (the sweep stops at the chunk's height): strided transposes where 16 floats past the last
-        // strand are readable, else element by element; once per chunk and frame.
-        ReadOnlySpan<float[]> src = [_restX, _restY, _restZ, _jointA, _jointB];
-        int blocks = (height + 15) / 16;
-        bool strided = first + (StrandChunk.Lanes - 1) * height + 16 * blocks <= _restX.Length;
-        for (int f = 0; f < src.Length; f++)
-        {
-            ref float row0 = ref chunk.Row(StrandChunk.BendRestX + f, 0);
-            ref float s = ref Simd.At(src[f], first);
-            if (strided)
-            {
-                for (int b = 0; b < blocks; b++)
-                {
-                    ref float rows = ref Unsafe.Add(ref row0, 16 * b * StrandChunk.Lanes);
-                    Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * b), height, ref rows, StrandChunk.Lanes);
-                    Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height + 16 * b), height, ref Unsafe.Add(ref rows, 16), StrandChunk.Lanes);
-                }
-                continue;
-            }
-            for (int l = 0; l < StrandChunk.Lanes; l++)
-                for (int k = 0; k < height; k++) Unsafe.Add(ref row0, k * StrandChunk.Lanes + l) = Unsafe.Add(ref s, l * height + k);
-        }
+        StrandChunkRunner.LoadRows(_restX, first, height, ref chunk.Row(StrandChunk.BendRestX, 0));
+        StrandChunkRunner.LoadRows(_restY, first, height, ref chunk.Row(StrandChunk.BendRestY, 0));
+        StrandChunkRunner.LoadRows(_restZ, first, height, ref chunk.Row(StrandChunk.BendRestZ, 0));
+        StrandChunkRunner.LoadRows(_jointA, first, height, ref chunk.Row(StrandChunk.BendA, 0));
+        StrandChunkRunner.LoadRows(_jointB, first, height, ref chunk.Row(StrandChunk.BendB, 0));
     }
 
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)

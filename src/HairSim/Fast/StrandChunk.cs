@@ -359,34 +359,41 @@ internal sealed class StrandChunkRunner
         for (int f = StrandChunk.KickX; f <= StrandChunk.KickZ; f++) tile.Data.Slice(tile.Offset(f), StrandChunk.Lanes).Clear();
     }
 
-    /// <summary>Transposes 32 strands of a world field into the chunk's rows (two 16 × 16 blocks).</summary>
-    private static void Load(float[] src, int first, int height, scoped StrandScratch tile, int field)
+    /// <summary>Transposes 32 strands of a world field into the chunk's rows.</summary>
+    private static void Load(float[] src, int first, int height, scoped StrandScratch tile, int field) =>
+        LoadRows(src, first, height, ref tile.Data[tile.Offset(field)]);
+
+    /// <summary>
+    /// 32 strands of <paramref name="height"/> particles from <paramref name="first"/> of a per-particle array into
+    /// chunk rows from <paramref name="row0"/>. 16 particles: two 16 × 16 transposes. Other capacities: 16 × 16
+    /// transposes with the strands' stride, one block of 16 rows at a time, where 16 floats past the last strand's
+    /// last block are readable (rows past the capacity then hold the next strands' particles, which the chunk masks);
+    /// else element by element, with the rows past the capacity cleared.
+    /// </summary>
+    internal static void LoadRows(float[] src, int first, int height, ref float row0)
     {
-        ref float row0 = ref tile.Data[tile.Offset(field)];
-        if (height != StrandChunk.Rows)
+        const int L = StrandChunk.Lanes;
+        ref float s = ref Simd.At(src, first);
+        if (height == StrandChunk.Rows)
         {
-            // Other capacities: 16 × 16 transposes with the strands' stride, one block of 16 rows at a time, where 16
-            // floats past the last strand's last block are readable (rows past the capacity then hold the next strands'
-            // particles, masked); else element by element, with the rows past the capacity cleared.
-            ref float s = ref Simd.At(src, first);
-            int blocks = (height + 15) / 16;
-            if (first + (StrandChunk.Lanes - 1) * height + 16 * blocks <= src.Length)
-            {
-                for (int b = 0; b < blocks; b++)
-                {
-                    ref float rows = ref Unsafe.Add(ref row0, 16 * b * StrandChunk.Lanes);
-                    Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * b), height, ref rows, StrandChunk.Lanes);
-                    Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height + 16 * b), height, ref Unsafe.Add(ref rows, 16), StrandChunk.Lanes);
-                }
-                return;
-            }
-            for (int l = 0; l < StrandChunk.Lanes; l++)
-                for (int k = 0; k < height; k++) Unsafe.Add(ref row0, k * StrandChunk.Lanes + l) = Unsafe.Add(ref s, l * height + k);
-            MemoryMarshal.CreateSpan(ref Unsafe.Add(ref row0, height * StrandChunk.Lanes), (16 * blocks - height) * StrandChunk.Lanes).Clear();
+            Transpose.In16Wide(ref s, ref row0, L);
+            Transpose.In16Wide(ref Unsafe.Add(ref s, 16 * StrandChunk.Rows), ref Unsafe.Add(ref row0, 16), L);
             return;
         }
-        Transpose.In16Wide(ref Simd.At(src, first), ref row0, StrandChunk.Lanes);
-        Transpose.In16Wide(ref Simd.At(src, first + 16 * StrandChunk.Rows), ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes);
+        int blocks = (height + 15) / 16;
+        if (first + (L - 1) * height + 16 * blocks <= src.Length)
+        {
+            for (int b = 0; b < blocks; b++)
+            {
+                ref float rows = ref Unsafe.Add(ref row0, 16 * b * L);
+                Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * b), height, ref rows, L);
+                Transpose.In16Strided(ref Unsafe.Add(ref s, 16 * height + 16 * b), height, ref Unsafe.Add(ref rows, 16), L);
+            }
+            return;
+        }
+        for (int l = 0; l < L; l++)
+            for (int k = 0; k < height; k++) Unsafe.Add(ref row0, k * L + l) = Unsafe.Add(ref s, l * height + k);
+        MemoryMarshal.CreateSpan(ref Unsafe.Add(ref row0, height * L), (16 * blocks - height) * L).Clear();
     }
 
     private static void Store(scoped StrandScratch tile, int first, int height, HairWorld w)

@@ -33,16 +33,7 @@ internal static class Transpose
     /// <see cref="In16"/> with AVX-512: one 16 × 16 transpose in registers (64 shuffles per 256 floats instead of
     /// 96 for four 8 × 8 blocks, and 16 loads and stores of 64 bytes instead of 32 of 32 bytes).
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoInlining)]
-    public static void In16Wide(ref float strands, ref float tile, int lanes)
-    {
-        Block16(ref strands, 16, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
-            out var o8, out var o9, out var o10, out var o11, out var o12, out var o13, out var o14, out var o15);
-        St16(ref tile, 0, o0); St16(ref tile, lanes, o1); St16(ref tile, 2 * lanes, o2); St16(ref tile, 3 * lanes, o3);
-        St16(ref tile, 4 * lanes, o4); St16(ref tile, 5 * lanes, o5); St16(ref tile, 6 * lanes, o6); St16(ref tile, 7 * lanes, o7);
-        St16(ref tile, 8 * lanes, o8); St16(ref tile, 9 * lanes, o9); St16(ref tile, 10 * lanes, o10); St16(ref tile, 11 * lanes, o11);
-        St16(ref tile, 12 * lanes, o12); St16(ref tile, 13 * lanes, o13); St16(ref tile, 14 * lanes, o14); St16(ref tile, 15 * lanes, o15);
-    }
+    public static void In16Wide(ref float strands, ref float tile, int lanes) => In16Strided(ref strands, 16, ref tile, lanes);
 
     /// <summary>The inverse of <see cref="In16Wide"/>; with <paramref name="add"/> the tile is added to the strands.</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
