@@ -94,6 +94,11 @@ public static class BenchCommand
                     rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, styled: true));
                     rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, bend: BendModel.SourceTriples));
                     rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, bend: BendModel.SourceTriples, styled: true));
+                    // Per-frame costs: the default with one substep per frame, and the source's scheme alone (issue 13's
+                    // native kernel) with 4 and 1 substeps.
+                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, tune: Substeps(1)) with { Scene = name + ", 1 substep" });
+                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, tune: SchemeOnly(4)) with { Scene = name + ", scheme only, 4 substeps" });
+                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, tune: SchemeOnly(1)) with { Scene = name + ", scheme only, 1 substep" });
                 }
             }
             // The largest scene's multi-threaded row is the frame-budget target: timed in several rounds, since run time on
@@ -147,18 +152,31 @@ public static class BenchCommand
 
     private static string LengthScene(int particles) => $"17,400 strands × {particles} particles";
 
-    private static HairScene Scene(GroomSettings groom, SolverPath path, BendModel bend = BendModel.RestShape)
+    private static HairScene Scene(GroomSettings groom, SolverPath path, BendModel bend = BendModel.RestShape, Action<SimulationSettings>? tune = null)
     {
         var settings = new SimulationSettings { Path = path, Bend = bend };
+        tune?.Invoke(settings);
         return GroomBuilder.BuildScene(groom, settings);
     }
+
+    /// <summary>
+    /// The source's scheme alone, as issue 13's hand-vectorised native kernel runs it: triple shape matching (α 0.5),
+    /// goal force, symplectic Euler and ellipsoid collision; no length pass, no guards, no speed limit.
+    /// </summary>
+    private static Action<SimulationSettings> SchemeOnly(int substeps) => st =>
+    {
+        st.Bend = BendModel.SourceTriples; st.Alpha = 0.5f; st.Length = LengthMode.None;
+        st.Guards = false; st.MaxSpeed = 0f; st.Substeps = substeps;
+    };
+
+    private static Action<SimulationSettings> Substeps(int n) => st => st.Substeps = n;
 
     /// <param name="bend">The bend model (the default's, or the source's triples: the former default, for before/after in one run).</param>
     /// <param name="styled">Style the scene first as the style command does (settle, bake the rest pose, chin-height cut, fitted fringe curl).</param>
     private static Row Frame(string name, GroomSettings groom, SolverPath path, IThreadDispatcher dispatcher, int threads, int warmup, int frames,
-        bool allowAvx512 = true, int rounds = 1, BendModel bend = BendModel.RestShape, bool styled = false)
+        bool allowAvx512 = true, int rounds = 1, BendModel bend = BendModel.RestShape, bool styled = false, Action<SimulationSettings>? tune = null)
     {
-        var scene = Scene(groom, path, bend);
+        var scene = Scene(groom, path, bend, tune);
         var sim = new HairSimulation(scene, PipelineBuilder.CreateDefault(allowAvx512), dispatcher);
         if (styled) new StyleCommand.Script(groom).StyleAll(sim);
         float dt = 1f / 60f;
@@ -337,6 +355,19 @@ public static class BenchCommand
             var source = Find(Ref, "fast, source's triples"); var sourceStyled = Find(Ref + ", styled", "fast, source's triples");
             if (plain != null && styledRow != null && source != null && sourceStyled != null)
                 sb.AppendLine(string.Create(Inv, $"Styled vs uncut, {n} thread{(n == 1 ? "" : "s")}: the default bend model {plain.MedianMs:F2} → {styledRow.MedianMs:F2} ms/frame styled (**{styledRow.MedianMs / plain.MedianMs:F2}×**); the source's triples (the former default) {source.MedianMs:F2} → {sourceStyled.MedianMs:F2} ms/frame (**{sourceStyled.MedianMs / source.MedianMs:F2}×**). The default model against the former default on the uncut groom: **{plain.MedianMs / source.MedianMs:F2}×**, styled: **{styledRow.MedianMs / source.MedianMs:F2}×** (target for styled and uncut: at most 1.3× the former default uncut)."));
+        }
+        foreach (int n in threads > 1 ? new[] { 1, threads } : [1])
+        {
+            Row? Find(string scene) => rows.Find(r => r.Scene == scene && r.Part == "frame" && r.Path == "fast" && r.Threads == n);
+            const string Ref = "reference 435×40×16";
+            var four = Find(Ref); var one = Find(Ref + ", 1 substep");
+            var s4 = Find(Ref + ", scheme only, 4 substeps"); var s1 = Find(Ref + ", scheme only, 1 substep");
+            // Issue 13's table: the hand-vectorised C kernel of the source's step on this machine, ms per step.
+            double native = n == 1 ? 0.354 : n == 2 ? 0.193 : double.NaN;
+            if (four != null && one != null)
+                sb.AppendLine(string.Create(Inv, $"One substep per frame, default model, {n} thread{(n == 1 ? "" : "s")}: {one.MedianMs:F3} ms per frame against {four.MsPerStep:F3} ms per substep at 4 substeps (**{one.MedianMs / four.MsPerStep:F2}×**; issue 13's target: at most 1.3×)."));
+            if (s4 != null && s1 != null)
+                sb.AppendLine(string.Create(Inv, $"The source's scheme alone (triples at α 0.5, no length pass, guards and speed limit off), {n} thread{(n == 1 ? "" : "s")}: {s4.MsPerStep:F3} ms per substep at 4 substeps, {s1.MedianMs:F3} ms per frame at 1 substep{(double.IsFinite(native) ? $"; against issue 13's native kernel ({native:F3} ms per step on this machine, from the issue, not measured here): **{s4.MsPerStep / native:F2}×** and **{s1.MedianMs / native:F2}×**" : "")}."));
         }
         var byLength = rows.FindAll(r => r.Scene.StartsWith("17,400 strands × ", StringComparison.Ordinal) && r.Path == "fast");
         if (byLength.Count > 1)
