@@ -9,18 +9,20 @@ export DOTNET_CLI_TELEMETRY_OPTOUT=1 DOTNET_NOLOGO=1
 
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-if ! dotnet restore HairSheet.csproj >"$log" 2>&1; then
-  if grep -Eq "MSB4236|Godot\.NET\.Sdk.*(could not be found|not found)|Unable to find package Godot|NU1101.*Godot" "$log"; then
-    echo "godot build: skipped (NuGet mirror lacks Godot.NET.Sdk 4.7.1)"
-    exit 0
-  fi
-  cat "$log" >&2
-  echo "godot build: restore failed" >&2
-  exit 1
-fi
-
 status=0
+# Restored per configuration: Debug references GodotSharpEditor and the exports do not, so an export build restored
+# as Debug would still see the editor API and miss editor code outside #if TOOLS (issue 14, point 13).
 for cfg in Debug ExportRelease; do
+  if ! dotnet restore HairSheet.csproj -p:Configuration="$cfg" >"$log" 2>&1; then
+    # Only a missing Godot.NET.Sdk (MSB4236: this project's NuGet mirror lacks it, docs/toolchain.md) is a skip.
+    if grep -q "MSB4236" "$log"; then
+      echo "godot build: skipped (NuGet mirror lacks Godot.NET.Sdk 4.7.1)"
+      exit 0
+    fi
+    cat "$log" >&2
+    echo "godot build: $cfg restore failed" >&2
+    exit 1
+  fi
   if dotnet build HairSheet.csproj -c "$cfg" --no-restore -nologo -v q >"$log" 2>&1; then
     echo "godot build: $cfg ok"
   else

@@ -19,7 +19,8 @@ public partial class HairMultiMeshRenderer : MultiMeshInstance3D
     private const string DefaultShaderPath = "res://addons/hairsheet/shaders/hair_strand.gdshader";
 
     private StrandRenderLayout _layout = StrandRenderLayout.PositionTexture;
-    private float _specularPower = 80f, _specularStrength = 0.35f;
+    private float _specularPower = 80f;
+    private float _specularStrength = 0.35f;
     private MultiMesh? _multiMesh;
     private ShaderMaterial? _material;
     private SegmentInstanceBuffer? _segments;

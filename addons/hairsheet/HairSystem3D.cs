@@ -22,6 +22,30 @@ public partial class HairSystem3D : Node3D
     [Signal] public delegate void StyleChangedEventHandler();
 
     private readonly HairNodeSettings _settings = new();
+    // Each exported value has its own field with an initializer equal to HairNodeSettings' default: Godot's source
+    // generator takes an exported property's default from its backing field's initializer, and records default(T)
+    // for a getter like `_settings.X`, so a value of 0 would not be saved and every property would show a revert
+    // arrow to 0 (godot #90872, #105348). Checked against HairNodeSettings by ExportDefaultsTests.
+    private int _sheets = 435;
+    private int _strandsPerSheet = 40;
+    private int _particlesPerStrand = 16;
+    private float _strandLength = 0.25f;
+    private Vector3 _headRadii = new Vector3(0.078f, 0.1f, 0.095f);
+    private BendModel _bend = BendModel.RestShape;
+    private float _sag = 0.01f;
+    private float _bendDamping = 0.5f;
+    private float _stiffness = 1f;
+    private float _damping = 0.32f;
+    private int _substeps = 4;
+    private float _staticFriction = 0f;
+    private float _kineticFriction = 0f;
+    private Vector3 _gravity = new Vector3(0f, -9.81f, 0f);
+    private int _stepsPerSecond = 60;
+    private int _renderDensity = 1;
+    private Color _rootColor = new Color(0.16f, 0.10f, 0.06f, 1f);
+    private Color _tipColor = new Color(0.45f, 0.32f, 0.20f, 1f);
+    private float _rootWidth = 0.0012f;
+    private float _tipWidth = 0.0002f;
     private Hairstyle? _hairstyle;
     private Node3D? _head;
     private bool _useHeadEllipsoid = true;
@@ -42,33 +66,33 @@ public partial class HairSystem3D : Node3D
     /// <summary>A saved groom (overrides the Groom numbers below when set).</summary>
     [ExportGroup("Groom")]
     [Export] public Hairstyle? Hairstyle { get => _hairstyle; set { _hairstyle = value; Invalidate(); } }
-    [Export(PropertyHint.Range, "1,2000,1")] public int Sheets { get => _settings.Sheets; set { _settings.Sheets = value; Invalidate(); } }
-    [Export(PropertyHint.Range, "1,256,1")] public int StrandsPerSheet { get => _settings.StrandsPerSheet; set { _settings.StrandsPerSheet = value; Invalidate(); } }
-    [Export(PropertyHint.Range, "3,64,1")] public int ParticlesPerStrand { get => _settings.ParticlesPerStrand; set { _settings.ParticlesPerStrand = value; Invalidate(); } }
-    [Export(PropertyHint.Range, "0.01,2,0.005,suffix:m")] public float StrandLength { get => _settings.StrandLength; set { _settings.StrandLength = value; Invalidate(); } }
-    [Export] public Vector3 HeadRadii { get => _settings.HeadRadii.ToGodot(); set { _settings.HeadRadii = value.ToNumerics(); Invalidate(); } }
+    [Export(PropertyHint.Range, "1,2000,1")] public int Sheets { get => _sheets; set { _sheets = value; _settings.Sheets = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "1,256,1")] public int StrandsPerSheet { get => _strandsPerSheet; set { _strandsPerSheet = value; _settings.StrandsPerSheet = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "3,64,1")] public int ParticlesPerStrand { get => _particlesPerStrand; set { _particlesPerStrand = value; _settings.ParticlesPerStrand = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0.01,2,0.005,suffix:m")] public float StrandLength { get => _strandLength; set { _strandLength = value; _settings.StrandLength = value; Invalidate(); } }
+    [Export] public Vector3 HeadRadii { get => _headRadii; set { _headRadii = value; _settings.HeadRadii = value.ToNumerics(); Invalidate(); } }
 
     // ---- Simulation ----
     /// <summary>The head the roots follow; empty = this node's own transform.</summary>
     [ExportGroup("Simulation")]
     [Export] public Node3D? Head { get => _head; set { _head = value; _collidersDirty = true; } }
     /// <summary>What keeps the shape: the rest shape (styles hold), the source's triples, or nothing (limp).</summary>
-    [Export] public BendModel Bend { get => _settings.Bend; set { _settings.Bend = value; Invalidate(); } }
+    [Export] public BendModel Bend { get => _bend; set { _bend = value; _settings.Bend = value; Invalidate(); } }
     /// <summary>Tip sag of a horizontal strand under 1 g, share of its length: 0.01 holds a style, 0.1 soft, 1 nearly limp. Same look at any size and rate.</summary>
-    [Export(PropertyHint.Range, "0,1,0.001,exp")] public float Sag { get => _settings.Sag; set { _settings.Sag = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,1,0.001,exp")] public float Sag { get => _sag; set { _sag = value; _settings.Sag = value; Invalidate(); } }
     /// <summary>Damping ratio of bending: 0 rings, 1 returns without overshoot.</summary>
-    [Export(PropertyHint.Range, "0,2,0.01")] public float BendDamping { get => _settings.BendDamping; set { _settings.BendDamping = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,2,0.01")] public float BendDamping { get => _bendDamping; set { _bendDamping = value; _settings.BendDamping = value; Invalidate(); } }
     /// <summary>The source's triple shape-matching α (Bend = SourceTriples only): 0 = limp, 1 = stiffest.</summary>
-    [Export(PropertyHint.Range, "0,1,0.01")] public float Stiffness { get => _settings.Stiffness; set { _settings.Stiffness = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,1,0.01")] public float Stiffness { get => _stiffness; set { _stiffness = value; _settings.Stiffness = value; Invalidate(); } }
     /// <summary>Air drag per natural time √(length / 1 g): 0.32 = 2/s on 25 cm hair; the same look at any size.</summary>
-    [Export(PropertyHint.Range, "0,10,0.01")] public float Damping { get => _settings.Damping; set { _settings.Damping = value; Invalidate(); } }
-    [Export(PropertyHint.Range, "1,32,1")] public int Substeps { get => _settings.Substeps; set { _settings.Substeps = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,10,0.01")] public float Damping { get => _damping; set { _damping = value; _settings.Damping = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "1,32,1")] public int Substeps { get => _substeps; set { _substeps = value; _settings.Substeps = value; Invalidate(); } }
     /// <summary>Coulomb friction against the colliders: 0 = frictionless; 0.5 rests on a head turned ~25°, 1 clings up to ~45°.</summary>
-    [Export(PropertyHint.Range, "0,2,0.01")] public float StaticFriction { get => _settings.StaticFriction; set { _settings.StaticFriction = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,2,0.01")] public float StaticFriction { get => _staticFriction; set { _staticFriction = value; _settings.StaticFriction = value; Invalidate(); } }
     /// <summary>Friction while sliding: 0 = frictionless; usually a little below Static Friction.</summary>
-    [Export(PropertyHint.Range, "0,2,0.01")] public float KineticFriction { get => _settings.KineticFriction; set { _settings.KineticFriction = value; Invalidate(); } }
-    [Export] public Vector3 Gravity { get => _settings.Gravity.ToGodot(); set { _settings.Gravity = value.ToNumerics(); Invalidate(); } }
-    [Export(PropertyHint.Range, "10,240,1,suffix:Hz")] public int StepsPerSecond { get => _settings.StepsPerSecond; set { _settings.StepsPerSecond = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,2,0.01")] public float KineticFriction { get => _kineticFriction; set { _kineticFriction = value; _settings.KineticFriction = value; Invalidate(); } }
+    [Export] public Vector3 Gravity { get => _gravity; set { _gravity = value; _settings.Gravity = value.ToNumerics(); Invalidate(); } }
+    [Export(PropertyHint.Range, "10,240,1,suffix:Hz")] public int StepsPerSecond { get => _stepsPerSecond; set { _stepsPerSecond = value; _settings.StepsPerSecond = value; Invalidate(); } }
     /// <summary>Collide with the groom's head ellipsoid (in addition to child collider nodes).</summary>
     [Export] public bool UseHeadEllipsoid { get => _useHeadEllipsoid; set { _useHeadEllipsoid = value; _collidersDirty = true; } }
     [Export] public bool SimulateInEditor { get => _simulateInEditor; set => _simulateInEditor = value; }
@@ -76,11 +100,11 @@ public partial class HairSystem3D : Node3D
     // ---- Rendering ----
     /// <summary>Interpolated render strands between neighbouring simulated strands (Catmull-Rom across the sheet).</summary>
     [ExportGroup("Rendering")]
-    [Export(PropertyHint.Range, "0,16,1")] public int RenderDensity { get => _settings.RenderDensity; set { _settings.RenderDensity = value; Invalidate(); } }
-    [Export] public Color RootColor { get => ToColor(_settings.RootColor); set { _settings.RootColor = value.ToNumerics(); PushLook(); } }
-    [Export] public Color TipColor { get => ToColor(_settings.TipColor); set { _settings.TipColor = value.ToNumerics(); PushLook(); } }
-    [Export(PropertyHint.Range, "0.0001,0.01,0.0001,suffix:m")] public float RootWidth { get => _settings.RootWidth; set { _settings.RootWidth = value; Invalidate(); } }
-    [Export(PropertyHint.Range, "0,0.01,0.0001,suffix:m")] public float TipWidth { get => _settings.TipWidth; set { _settings.TipWidth = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,16,1")] public int RenderDensity { get => _renderDensity; set { _renderDensity = value; _settings.RenderDensity = value; Invalidate(); } }
+    [Export] public Color RootColor { get => _rootColor; set { _rootColor = value; _settings.RootColor = value.ToNumerics(); PushLook(); } }
+    [Export] public Color TipColor { get => _tipColor; set { _tipColor = value; _settings.TipColor = value.ToNumerics(); PushLook(); } }
+    [Export(PropertyHint.Range, "0.0001,0.01,0.0001,suffix:m")] public float RootWidth { get => _rootWidth; set { _rootWidth = value; _settings.RootWidth = value; Invalidate(); } }
+    [Export(PropertyHint.Range, "0,0.01,0.0001,suffix:m")] public float TipWidth { get => _tipWidth; set { _tipWidth = value; _settings.TipWidth = value; Invalidate(); } }
 
     public HairScene? Scene => _scene;
     public HairSimulation? Simulation => _simulation;
@@ -248,7 +272,9 @@ public partial class HairSystem3D : Node3D
     public void LoadHairstyle(string path)
     {
         if (!ResourceLoader.Exists(path)) throw new System.IO.FileNotFoundException($"No hairstyle at {path}.");
-        var res = ResourceLoader.Load<Hairstyle>(path, cacheMode: ResourceLoader.CacheMode.Ignore)
+        // Untyped load and `as`: Load<T> casts, so a resource of another type would throw InvalidCastException
+        // instead of this message.
+        var res = ResourceLoader.Load(path, "", ResourceLoader.CacheMode.Ignore) as Hairstyle
                   ?? throw new System.IO.InvalidDataException($"{path} is not a Hairstyle resource.");
         // Build first: if the file is bad, nothing here has changed yet.
         res.BuildScene(_settings.ToSimulation());
@@ -322,5 +348,4 @@ public partial class HairSystem3D : Node3D
         return r;
     }
 
-    private static Color ToColor(System.Numerics.Vector4 c) => new(c.X, c.Y, c.Z, c.W);
 }

@@ -34,8 +34,9 @@ public class PositionTextureBufferTests
     [Theory]
     [InlineData(34365, 16)]   // the reference scene's render strands at density 1
     [InlineData(1, 2)]
-    [InlineData(5000, 4096)]
-    [InlineData(100, 16384)]
+    [InlineData(4096, 4096)]
+    [InlineData(100, 4096)]
+    [InlineData(100_000, 33)]
     public void Texture_rows_hold_whole_strands_within_the_size_limit(int strands, int stride)
     {
         var b = new PositionTextureBuffer(strands, stride, StrandLook.Default);
@@ -48,6 +49,16 @@ public class PositionTextureBufferTests
         Assert.InRange(x, 0, b.Width - 1);
         Assert.InRange(y, 0, b.Height - 1);
         Assert.Equal((long)b.Width * b.Height * 16, b.TexelBytes.LongLength);
+        // The size mobile and web GPUs guarantee, in both directions.
+        Assert.True(b.Width <= 4096 && b.Height <= 4096, $"{b.Width} × {b.Height}");
+    }
+
+    [Fact]
+    public void Points_per_strand_past_the_texture_width_are_refused()
+    {
+        Assert.Throws<ArgumentOutOfRangeException>(() => new PositionTextureBuffer(10, 4097, StrandLook.Default));
+        // And more strands of the widest kind than 4096 rows hold.
+        Assert.Throws<ArgumentOutOfRangeException>(() => new PositionTextureBuffer(4097, 4096, StrandLook.Default));
     }
 
     [Fact]

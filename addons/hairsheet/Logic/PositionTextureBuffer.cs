@@ -8,14 +8,15 @@ namespace HairSheet.Logic;
 /// Layout B: one ribbon mesh per render strand (one MultiMesh instance each), its vertex shader reading
 /// particle positions from an RGBAF texture. Strand r's points sit in a run of <see cref="Stride"/> texels;
 /// runs never wrap a texture row because the width is a whole number of strands (at most
-/// <see cref="MaxTextureWidth"/> texels, a limit every renderer, Compatibility included, supports).
+/// <see cref="MaxTextureWidth"/> texels; more strands take more rows). 4096 is the size many mobile and web GPUs
+/// guarantee (Godot's 16384 maximum is not: godotengine/godot PR #48269), and the project targets Compatibility on mobile.
 /// Texel = (x, y, z, live): live is 1 for a live point and 0 past a cut tip, where the point repeats the
 /// tip so the ribbon collapses. The instance buffer (identity transform + custom data carrying the strand
 /// index) is static: written once, uploaded only when the layout changes. Per frame only the texture moves.
 /// </summary>
 public sealed class PositionTextureBuffer
 {
-    public const int MaxTextureWidth = 16384;
+    public const int MaxTextureWidth = 4096;
     /// <summary>Custom data is half precision in the Compatibility renderer: integers up to 2048 are exact, so the index is split base 1024.</summary>
     public const int IndexBase = 1024;
     /// <summary>Transform (12) + custom data (4); no colour.</summary>

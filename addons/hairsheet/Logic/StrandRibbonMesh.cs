@@ -38,7 +38,7 @@ public sealed class StrandRibbonMesh
     public static StrandRibbonMesh Strand(int points)
     {
         if (points < 2 || points > PositionTextureBuffer.MaxTextureWidth)
-            throw new ArgumentOutOfRangeException(nameof(points), points, "A strand ribbon needs 2 … 16384 points.");
+            throw new ArgumentOutOfRangeException(nameof(points), points, $"A strand ribbon needs 2 … {PositionTextureBuffer.MaxTextureWidth} points.");
         var pos = new float[points * 2 * 3];
         var uv = new float[points * 2 * 2];
         var idx = new int[(points - 1) * 6];
