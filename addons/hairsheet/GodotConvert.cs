@@ -18,6 +18,10 @@ public static class GodotConvert
     public static HairSim.RigidTransform ToRigid(this Transform3D t) =>
         HeadPoseMath.ToRigid(t.Basis.Column0.ToNumerics(), t.Basis.Column1.ToNumerics(), t.Basis.Column2.ToNumerics(), t.Origin.ToNumerics());
 
+    /// <summary>A head pose with scale and any reflection stripped (<see cref="HeadPoseMath.HeadPose"/>).</summary>
+    public static HairSim.RigidTransform ToHeadPose(this Transform3D t, out bool mirrored) =>
+        HeadPoseMath.HeadPose(t.Basis.Column0.ToNumerics(), t.Basis.Column1.ToNumerics(), t.Basis.Column2.ToNumerics(), t.Origin.ToNumerics(), out mirrored);
+
     public static Aabb ToAabb(this StrandBounds b) =>
         b.IsEmpty ? new Aabb(Vector3.Zero, Vector3.Zero) : new Aabb(b.Min.ToGodot(), b.Size.ToGodot());
 

@@ -40,6 +40,20 @@ public partial class HairMultiMeshRenderer : MultiMeshInstance3D
     /// <summary>Bytes sent to the engine by the last Render call.</summary>
     public long LastUploadBytes { get; private set; }
 
+    /// <summary>
+    /// The MultiMesh, material and bounds are generated from the hair every time the scene opens: they are never
+    /// written to the scene file (in the editor this [Tool] node assigns them, and a saved demo.tscn held the whole
+    /// render state, ≈ 550k floats and a float texture, for the reference groom).
+    /// </summary>
+    public override void _ValidateProperty(Godot.Collections.Dictionary property)
+    {
+        base._ValidateProperty(property);
+        var name = property["name"].AsStringName();
+        if (name == MultiMeshInstance3D.PropertyName.Multimesh || name == GeometryInstance3D.PropertyName.MaterialOverride
+            || name == GeometryInstance3D.PropertyName.CustomAabb)
+            property["usage"] = (long)(property["usage"].As<PropertyUsageFlags>() & ~PropertyUsageFlags.Storage);
+    }
+
     public override void _Ready()
     {
         TopLevel = true;

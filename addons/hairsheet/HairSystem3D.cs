@@ -61,11 +61,25 @@ public partial class HairSystem3D : Node3D
     private IReadOnlyList<string> _problems = Array.Empty<string>();
     private bool _needsRebuild = true, _collidersDirty = true;
     private readonly Stopwatch _stepTimer = new();
+    private RigidTransform _lastHeadPose = RigidTransform.Identity;
+    private string? _headProblem;
 
     // ---- Groom ----
     /// <summary>A saved groom (overrides the Groom numbers below when set).</summary>
     [ExportGroup("Groom")]
-    [Export] public Hairstyle? Hairstyle { get => _hairstyle; set { _hairstyle = value; Invalidate(); } }
+    [Export] public Hairstyle? Hairstyle
+    {
+        get => _hairstyle;
+        set
+        {
+            // Follow the resource's edits in the inspector (its groom setters emit Changed; StyleData, which this node
+            // writes after every edit, does not, so there is no loop through OnStyleChanged).
+            if (_hairstyle != null) _hairstyle.Changed -= Invalidate;
+            _hairstyle = value;
+            if (_hairstyle != null) _hairstyle.Changed += Invalidate;
+            Invalidate();
+        }
+    }
     [Export(PropertyHint.Range, "1,2000,1")] public int Sheets { get => _sheets; set { _sheets = value; _settings.Sheets = value; Invalidate(); } }
     [Export(PropertyHint.Range, "1,256,1")] public int StrandsPerSheet { get => _strandsPerSheet; set { _strandsPerSheet = value; _settings.StrandsPerSheet = value; Invalidate(); } }
     [Export(PropertyHint.Range, "3,64,1")] public int ParticlesPerStrand { get => _particlesPerStrand; set { _particlesPerStrand = value; _settings.ParticlesPerStrand = value; Invalidate(); } }
@@ -120,9 +134,10 @@ public partial class HairSystem3D : Node3D
 
     public override void _ExitTree()
     {
-        // No threads may outlive the node: the editor unloads this assembly on every rebuild (godot #78513).
+        // No threads may outlive the node. The editor's C# rebuilds unload this assembly without calling _ExitTree
+        // (godot #78513): DispatcherRegistry disposes every dispatcher when the assembly starts unloading.
         _simulation = null;
-        _dispatcher?.Dispose();
+        DispatcherRegistry.Release(_dispatcher);
         _dispatcher = null;
     }
 
@@ -151,7 +166,8 @@ public partial class HairSystem3D : Node3D
     public override string[] _GetConfigurationWarnings()
     {
         var w = new List<string>(_problems);
-        if (FindRenderer() == null && !Engine.IsEditorHint()) w.Add("No HairMultiMeshRenderer child: one is created at run time.");
+        if (_headProblem != null) w.Add(_headProblem);
+        if (FindRenderer() == null) w.Add("No HairMultiMeshRenderer child: one is created when the hair is grown.");
         return w.ToArray();
     }
 
@@ -202,7 +218,7 @@ public partial class HairSystem3D : Node3D
         _groom = groom;
         scene.World.PlaceHead(HeadPose());
         SyncColliders(scene);
-        _dispatcher ??= ThreadDispatchers.CreateDefault();
+        _dispatcher ??= DispatcherRegistry.Create();
         _scene = scene;
         _simulation = new HairSimulation(scene, dispatcher: _dispatcher);
         _edits = new HairEditSession(scene);
@@ -278,7 +294,7 @@ public partial class HairSystem3D : Node3D
                   ?? throw new System.IO.InvalidDataException($"{path} is not a Hairstyle resource.");
         // Build first: if the file is bad, nothing here has changed yet.
         res.BuildScene(_settings.ToSimulation());
-        _hairstyle = res;
+        Hairstyle = res; // through the setter, so the node follows the resource's edits
         Rebuild();
         EmitSignal(SignalName.StyleChanged);
     }
@@ -294,7 +310,34 @@ public partial class HairSystem3D : Node3D
 
     // ---- helpers ----
 
-    private RigidTransform HeadPose() => HeadTransform().ToRigid();
+    /// <summary>
+    /// The head's pose for the simulation. A mirrored head (negative scale) has its reflection stripped and a
+    /// degenerate one (zero scale) keeps the last good pose; either is reported once, as an error and a
+    /// configuration warning, instead of throwing from every physics frame.
+    /// </summary>
+    private RigidTransform HeadPose()
+    {
+        try
+        {
+            var pose = HeadTransform().ToHeadPose(out bool mirrored);
+            ReportHead(mirrored ? "The head's transform is mirrored (negative scale): its reflection is ignored." : null);
+            _lastHeadPose = pose;
+            return pose;
+        }
+        catch (ArgumentException e)
+        {
+            ReportHead($"The head's transform has no rotation ({e.Message}): the last good pose is kept.");
+            return _lastHeadPose;
+        }
+    }
+
+    private void ReportHead(string? problem)
+    {
+        if (problem == _headProblem) return;
+        _headProblem = problem;
+        if (problem != null) GD.PushError($"{Name}: {problem}");
+        if (IsInsideTree()) UpdateConfigurationWarnings();
+    }
 
     private Transform3D HeadTransform()
     {

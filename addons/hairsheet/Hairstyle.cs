@@ -13,16 +13,28 @@ namespace HairSheet;
 [GlobalClass]
 public partial class Hairstyle : Resource
 {
-    [Export(PropertyHint.Range, "1,100000,1")] public int Sheets { get; set; } = 435;
-    [Export(PropertyHint.Range, "1,4096,1")] public int StrandsPerSheet { get; set; } = 40;
-    [Export(PropertyHint.Range, "3,4096,1")] public int ParticlesPerStrand { get; set; } = 16;
-    [Export(PropertyHint.Range, "0.001,10,0.001,suffix:m")] public float StrandLength { get; set; } = 0.25f;
-    [Export] public Vector3 HeadRadii { get; set; } = new(0.078f, 0.1f, 0.095f);
-    [Export] public Vector3 HeadCenter { get; set; } = Vector3.Zero;
-    [Export(PropertyHint.Range, "0,1,0.01")] public float RootJitter { get; set; } = 0.5f;
-    [Export(PropertyHint.Range, "1,8,1")] public int PinnedPerStrand { get; set; } = 2;
+    // Fields with initializers (Godot's generator takes the defaults from them) and setters that emit Changed, so
+    // a HairSystem3D regrows when the groom is edited in the inspector. StyleData does not emit: the node writes it
+    // after every edit, and regrowing from it would undo nothing but loop.
+    private int _sheets = 435;
+    private int _strandsPerSheet = 40;
+    private int _particlesPerStrand = 16;
+    private float _strandLength = 0.25f;
+    private Vector3 _headRadii = new Vector3(0.078f, 0.1f, 0.095f);
+    private Vector3 _headCenter = new Vector3(0f, 0f, 0f);
+    private float _rootJitter = 0.5f;
+    private int _pinnedPerStrand = 2;
+    private long _seed = 2009;
+    [Export(PropertyHint.Range, "1,100000,1")] public int Sheets { get => _sheets; set { _sheets = value; EmitChanged(); } }
+    [Export(PropertyHint.Range, "1,4096,1")] public int StrandsPerSheet { get => _strandsPerSheet; set { _strandsPerSheet = value; EmitChanged(); } }
+    [Export(PropertyHint.Range, "3,4096,1")] public int ParticlesPerStrand { get => _particlesPerStrand; set { _particlesPerStrand = value; EmitChanged(); } }
+    [Export(PropertyHint.Range, "0.001,10,0.001,suffix:m")] public float StrandLength { get => _strandLength; set { _strandLength = value; EmitChanged(); } }
+    [Export] public Vector3 HeadRadii { get => _headRadii; set { _headRadii = value; EmitChanged(); } }
+    [Export] public Vector3 HeadCenter { get => _headCenter; set { _headCenter = value; EmitChanged(); } }
+    [Export(PropertyHint.Range, "0,1,0.01")] public float RootJitter { get => _rootJitter; set { _rootJitter = value; EmitChanged(); } }
+    [Export(PropertyHint.Range, "1,8,1")] public int PinnedPerStrand { get => _pinnedPerStrand; set { _pinnedPerStrand = value; EmitChanged(); } }
     /// <summary>Groom seed (Godot exports 64-bit integers as long).</summary>
-    [Export] public long Seed { get; set; } = 2009;
+    [Export] public long Seed { get => _seed; set { _seed = value; EmitChanged(); } }
     /// <summary>The styled state; empty = the groom as grown.</summary>
     [Export] public byte[] StyleData { get; set; } = [];
 

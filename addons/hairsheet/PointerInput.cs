@@ -10,6 +10,11 @@ public static class PointerInput
     {
         switch (e)
         {
+            // Godot's mouse copy of a touch (emulate_mouse_from_touch, on so that GUI buttons work on touch screens):
+            // the touch itself arrives as ScreenTouch/ScreenDrag, so the copy would draw every stroke twice.
+            case InputEventMouse m when m.Device == InputEvent.DeviceIdEmulation:
+                sample = default;
+                return false;
             case InputEventMouseButton { ButtonIndex: MouseButton.Left } b:
                 sample = new PointerSample(b.Pressed ? PointerPhase.Down : PointerPhase.Up, StrokeCapture.MousePointer, b.Position.ToNumerics());
                 return true;

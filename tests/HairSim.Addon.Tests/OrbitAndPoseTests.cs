@@ -62,6 +62,24 @@ public class OrbitAndPoseTests
     }
 
     [Fact]
+    public void A_mirrored_head_keeps_its_rotation_and_says_so()
+    {
+        var q = Quaternion.CreateFromYawPitchRoll(0.7f, -0.3f, 0.2f);
+        Vector3 bx = Vector3.Transform(Vector3.UnitX, q) * 2f, by = Vector3.Transform(Vector3.UnitY, q) * 0.5f, bz = Vector3.Transform(Vector3.UnitZ, q) * 3f;
+        var origin = new Vector3(1, 2, 3);
+        var plain = HeadPoseMath.HeadPose(bx, by, bz, origin, out bool m0);
+        Assert.False(m0);
+        // Mirrored bones: Z scaled by −3. The pose is the unmirrored one, reported as mirrored.
+        var mirrored = HeadPoseMath.HeadPose(bx, by, -bz, origin, out bool m1);
+        Assert.True(m1);
+        var local = new Vector3(0.05f, 0.1f, -0.02f);
+        AssertClose(plain.TransformPoint(local), mirrored.TransformPoint(local), 1e-5f);
+        AssertClose(origin + Vector3.Transform(local, q), mirrored.TransformPoint(local), 1e-5f);
+        // Zero scale still has no rotation to take.
+        Assert.Throws<ArgumentException>(() => HeadPoseMath.HeadPose(Vector3.Zero, by, bz, origin, out _));
+    }
+
+    [Fact]
     public void Collider_nodes_put_their_scale_into_the_shape()
     {
         var e = HeadPoseMath.Ellipsoid(Vector3.UnitX * 2, Vector3.UnitY, Vector3.UnitZ * 0.5f, new Vector3(0, 0.1f, 0), new Vector3(0.1f, 0.1f, 0.1f));

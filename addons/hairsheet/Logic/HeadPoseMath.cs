@@ -16,6 +16,17 @@ public static class HeadPoseMath
         return new RigidTransform(origin, q);
     }
 
+    /// <summary>
+    /// A head pose from any invertible transform: scale removed, and a reflection (negative scale, as mirrored bones
+    /// have) stripped by keeping X and Y and taking Z = X × Y. <paramref name="mirrored"/> says whether one was
+    /// stripped, so the node can say so once. Throws only for a basis no rotation can be taken from (zero scale, NaN).
+    /// </summary>
+    public static RigidTransform HeadPose(Vector3 basisX, Vector3 basisY, Vector3 basisZ, Vector3 origin, out bool mirrored)
+    {
+        mirrored = Finite(basisZ) && Vector3.Dot(Vector3.Cross(basisX, basisY), basisZ) < 0f;
+        return ToRigid(basisX, basisY, mirrored ? -basisZ : basisZ, origin);
+    }
+
     /// <summary>The rotation of a basis with its scale removed (Gram–Schmidt on X then Y).</summary>
     public static Quaternion Rotation(Vector3 basisX, Vector3 basisY, Vector3 basisZ)
     {
