@@ -50,6 +50,8 @@ public partial class HairSystem3D : Node3D
     private Node3D? _head;
     private bool _useHeadEllipsoid = true;
     private bool _simulateInEditor = true;
+    private bool _stepOnWorker = false;
+    private BackgroundStepper? _stepper;
     private HairScene? _scene;
     private HairSimulation? _simulation;
     private IDisposableDispatcher? _dispatcher;
@@ -110,6 +112,11 @@ public partial class HairSystem3D : Node3D
     /// <summary>Collide with the groom's head ellipsoid (in addition to child collider nodes).</summary>
     [Export] public bool UseHeadEllipsoid { get => _useHeadEllipsoid; set { _useHeadEllipsoid = value; _collidersDirty = true; } }
     [Export] public bool SimulateInEditor { get => _simulateInEditor; set => _simulateInEditor = value; }
+    /// <summary>
+    /// Run time: step the hair on a worker thread while the frame renders, drawing the previous step's result (one
+    /// physics frame of latency), so the hair's cost leaves the main thread. Off: step in _PhysicsProcess.
+    /// </summary>
+    [Export] public bool StepOnWorker { get => _stepOnWorker; set { Settle(); _stepOnWorker = value; } }
 
     // ---- Rendering ----
     /// <summary>Interpolated render strands between neighbouring simulated strands (Catmull-Rom across the sheet).</summary>
@@ -120,8 +127,9 @@ public partial class HairSystem3D : Node3D
     [Export(PropertyHint.Range, "0.0001,0.01,0.0001,suffix:m")] public float RootWidth { get => _rootWidth; set { _rootWidth = value; _settings.RootWidth = value; Invalidate(); } }
     [Export(PropertyHint.Range, "0,0.01,0.0001,suffix:m")] public float TipWidth { get => _tipWidth; set { _tipWidth = value; _settings.TipWidth = value; Invalidate(); } }
 
-    public HairScene? Scene => _scene;
-    public HairSimulation? Simulation => _simulation;
+    /// <summary>The hair's scene; with <see cref="StepOnWorker"/>, reading it first waits for the step under way.</summary>
+    public HairScene? Scene { get { Settle(); return _scene; } }
+    public HairSimulation? Simulation { get { Settle(); return _simulation; } }
     /// <summary>Wall time of the last physics frame's hair steps, in milliseconds.</summary>
     public double LastStepMilliseconds { get; private set; }
     public HairNodeSettings Settings => _settings;
@@ -136,6 +144,7 @@ public partial class HairSystem3D : Node3D
     {
         // No threads may outlive the node. The editor's C# rebuilds unload this assembly without calling _ExitTree
         // (godot #78513): DispatcherRegistry disposes every dispatcher when the assembly starts unloading.
+        StopWorker();
         _simulation = null;
         DispatcherRegistry.Release(_dispatcher);
         _dispatcher = null;
@@ -154,6 +163,17 @@ public partial class HairSystem3D : Node3D
         if (_simulation == null || _scene == null) return;
         if (_collidersDirty) SyncColliders(_scene);
         int steps = _clock.Advance(delta);
+        if (_stepOnWorker && !Engine.IsEditorHint())
+        {
+            // Finish the step started last frame, draw it, and start this frame's: the worker runs while the engine renders.
+            _stepper ??= new BackgroundStepper(_simulation);
+            try { _stepper.Wait(); }
+            catch (Exception e) when (e is ArgumentException or InvalidOperationException) { GD.PushError($"{Name}: {e.Message}"); }
+            LastStepMilliseconds = _stepper.LastStepMilliseconds;
+            Draw();
+            if (steps > 0) _stepper.Start((float)_clock.Step, steps, HeadPose());
+            return;
+        }
         if (steps == 0) return;
         _stepTimer.Restart();
         var head = HeadPose();
@@ -185,6 +205,7 @@ public partial class HairSystem3D : Node3D
     public void Rebuild()
     {
         _needsRebuild = false;
+        StopWorker(); // the worker belongs to the simulation being replaced
         _problems = _settings.Validate();
         if (IsInsideTree()) UpdateConfigurationWarnings();
         if (_problems.Count > 0)
@@ -237,6 +258,7 @@ public partial class HairSystem3D : Node3D
     /// <summary>Run time: apply an edit now (undo with <see cref="UndoEdit"/>).</summary>
     public void ApplyEdit(HairEdit edit)
     {
+        Settle();
         if (_edits == null) throw new InvalidOperationException("The hair node has no scene yet.");
         _edits.Do(edit);
         OnStyleChanged();
@@ -248,6 +270,7 @@ public partial class HairSystem3D : Node3D
     /// <summary>Undo manager do-method: applies the staged edit, or redoes the last undone one.</summary>
     public void RedoEdit()
     {
+        Settle();
         if (_edits == null) return;
         if (_pendingEdit != null) { _edits.Do(_pendingEdit); _pendingEdit = null; }
         else if (!_edits.Redo()) return;
@@ -257,6 +280,7 @@ public partial class HairSystem3D : Node3D
     /// <summary>Undo manager undo-method (and the run-time Undo button).</summary>
     public void UndoEdit()
     {
+        Settle();
         if (_edits != null && _edits.Undo()) OnStyleChanged();
     }
 
@@ -273,6 +297,7 @@ public partial class HairSystem3D : Node3D
     /// <summary>Saves groom + style as a Hairstyle resource; written to a temporary name, then renamed.</summary>
     public void SaveHairstyle(string path)
     {
+        Settle();
         if (_scene == null || _groom == null) throw new InvalidOperationException("Nothing to save: the hair node has no scene.");
         var res = new Hairstyle();
         res.SetFrom(HairstyleRecord.FromGroom(_groom, HairStyleIO.Save(_scene)));
@@ -287,6 +312,7 @@ public partial class HairSystem3D : Node3D
     /// <summary>Loads a Hairstyle file; a missing or corrupt file throws and the current hair stays as it is.</summary>
     public void LoadHairstyle(string path)
     {
+        Settle();
         if (!ResourceLoader.Exists(path)) throw new System.IO.FileNotFoundException($"No hairstyle at {path}.");
         // Untyped load and `as`: Load<T> casts, so a resource of another type would throw InvalidCastException
         // instead of this message.
@@ -343,6 +369,19 @@ public partial class HairSystem3D : Node3D
     {
         var t = _head != null && IsInstanceValid(_head) ? _head.GlobalTransform : GlobalTransform;
         return new Transform3D(t.Basis.Orthonormalized(), t.Origin);
+    }
+
+    /// <summary>Waits for a background step, so the scene can be read or edited (a no-op when stepping in place).</summary>
+    private void Settle()
+    {
+        try { _stepper?.Wait(); }
+        catch (Exception e) when (e is ArgumentException or InvalidOperationException) { GD.PushError($"{Name}: {e.Message}"); }
+    }
+
+    private void StopWorker()
+    {
+        _stepper?.Dispose();
+        _stepper = null;
     }
 
     private void SyncColliders(HairScene scene)

@@ -11,7 +11,7 @@ namespace HairSim.Cli;
 /// </summary>
 public static class RenderBenchCommand
 {
-    public const string Help = "time render-buffer filling for both MultiMesh layouts: --density 1 --frames 30 --warmup 10 --repeats 200";
+    public const string Help = "time render-buffer filling for both MultiMesh layouts, and the main thread's frame with the hair stepped in place or on a worker: --density 1 --frames 30 --warmup 10 --repeats 200 --render-ms 5";
 
     public static int Execute(CliArgs a)
     {
@@ -19,7 +19,9 @@ public static class RenderBenchCommand
         int frames = a.Int("frames", 30);
         int warmup = a.Int("warmup", 10);
         int repeats = a.Int("repeats", 200);
+        double renderMs = a.Double("render-ms", 5);
         a.RejectUnknown();
+        if (!(renderMs >= 0 && renderMs <= 100)) throw new ArgumentException("--render-ms must be in 0 … 100.");
         if (frames < 1 || warmup < 0 || repeats < 1 || repeats > 100_000) throw new ArgumentException("--frames ≥ 1, --warmup ≥ 0, --repeats in 1 … 100000.");
 
         var scene = GroomBuilder.BuildScene(GroomSettings.Reference(), new SimulationSettings { Path = SolverPath.Fast });
@@ -37,7 +39,53 @@ public static class RenderBenchCommand
         Report("segments, 16 floats (+custom)", warmup, repeats, () => seg16.Fill(rs), () => seg16.BytesPerUpload, $"{seg16.MaxInstances:N0} instances × 8 vertices");
         Report("position texture (RGBAF)", warmup, repeats, () => tex.Fill(rs), () => tex.BytesPerUpload,
             $"{tex.InstanceCount:N0} instances × {rs.Stride * 2} vertices, texture {tex.Width} × {tex.Height}");
+        MainThread(sim, tex, warmup, repeats, renderMs);
         return 0;
+    }
+
+    /// <summary>
+    /// The main thread's share of a 60 Hz frame, HairSystem3D's two modes on the same simulation: in place (step,
+    /// then fill the position texture) and on a worker (wait for last frame's step, fill, start the next: one frame
+    /// of latency). Between frames the main thread is kept busy for <paramref name="renderMs"/> (spinning), standing in
+    /// for the engine's own work while the worker steps.
+    /// </summary>
+    private static void MainThread(HairSimulation sim, PositionTextureBuffer tex, int warmup, int repeats, double renderMs)
+    {
+        var rs = sim.Scene.RenderOutput!;
+        var inPlace = new double[repeats];
+        var onWorker = new double[repeats];
+        var sw = new Stopwatch();
+        int f = 0;
+        for (int i = -warmup; i < repeats; i++, f++)
+        {
+            sw.Restart();
+            sim.Step(1f / 60f, HairSim.Measurement.HeadMotion.Shake(f / 60f));
+            tex.Fill(rs);
+            if (i >= 0) inPlace[i] = sw.Elapsed.TotalMilliseconds;
+            Spin(renderMs);
+        }
+        using (var stepper = new BackgroundStepper(sim))
+        {
+            for (int i = -warmup; i < repeats; i++, f++)
+            {
+                sw.Restart();
+                stepper.Wait();
+                tex.Fill(rs);
+                stepper.Start(1f / 60f, 1, HairSim.Measurement.HeadMotion.Shake(f / 60f));
+                if (i >= 0) onWorker[i] = sw.Elapsed.TotalMilliseconds;
+                Spin(renderMs);
+            }
+            stepper.Wait();
+        }
+        Array.Sort(inPlace); Array.Sort(onWorker);
+        Console.WriteLine(string.Create(CultureInfo.InvariantCulture,
+            $"main thread per frame (step + position-texture fill; {renderMs:F1} ms of other main-thread work between frames): in place median {inPlace[repeats / 2]:F3} ms, p95 {inPlace[(int)(repeats * 0.95)]:F3} ms; on a worker median {onWorker[repeats / 2]:F3} ms, p95 {onWorker[(int)(repeats * 0.95)]:F3} ms (one frame of latency)"));
+    }
+
+    private static void Spin(double ms)
+    {
+        var t = Stopwatch.StartNew();
+        while (t.Elapsed.TotalMilliseconds < ms) Thread.SpinWait(64);
     }
 
     private static void Report(string name, int warmup, int repeats, Func<int> fill, Func<long> bytes, string shape)
