@@ -37,7 +37,7 @@ public static class BenchCommand
         bool systems = !a.Flag("no-systems");
         int rounds = a.Int("rounds", 5);
         string lengthsText = a.String("lengths", "3,8,12,16,17,32,64");
-        string? outPath = a.String("out");
+        string? outPath = a.String("out") is { } o ? a.OutputFile("out", o) : null;
         a.RejectUnknown();
         if (frames < 3 || frames > 100_000) throw new ArgumentException("--frames must be in 3 … 100000.");
         if (warmup < 1 || warmup > 100_000) throw new ArgumentException("--warmup must be in 1 … 100000.");

@@ -21,7 +21,7 @@ public static class LeaveOutCommand
 
     public static int Execute(CliArgs a)
     {
-        string output = a.String("out", "docs/leave-out.md");
+        string output = a.OutputFile("out", "docs/leave-out.md");
         int frames = a.Int("frames", 60);
         int threads = a.Int("threads", Environment.ProcessorCount);
         a.RejectUnknown();

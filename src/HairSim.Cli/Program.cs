@@ -16,7 +16,9 @@ if (args.Length == 0 || args[0] is "-h" or "--help" or "help")
 {
     Console.WriteLine("hairsim: HairSheet's headless console.\n\nCommands:");
     foreach (var (name, c) in commands) Console.WriteLine($"  {name,-10} {c.Help}");
-    Console.WriteLine("\nWith no command: run (the reference scene, 10 s).");
+    Console.WriteLine("\nWith no command: run (the reference scene, 10 s). `<command> --help` shows one command's options.");
+    Console.WriteLine("Exit codes: 0 done; 1 bad option or value, or an output that cannot be written; 2 unknown command;");
+    Console.WriteLine("           3 the run produced non-finite values.");
     if (args.Length == 0) return RunCommand.Execute(new CliArgs([]));
     return 0;
 }
@@ -27,9 +29,15 @@ if (!commands.TryGetValue(args[0], out var cmd))
 }
 try
 {
-    return cmd.Run(new CliArgs(args[1..]));
+    var cli = new CliArgs(args[1..]);
+    if (cli.HelpRequested)
+    {
+        Console.WriteLine($"hairsim {args[0]}: {cmd.Help}");
+        return 0;
+    }
+    return cmd.Run(cli);
 }
-catch (Exception e) when (e is ArgumentException or InvalidDataException or IOException or FormatException)
+catch (Exception e) when (e is ArgumentException or InvalidDataException or IOException or FormatException or UnauthorizedAccessException)
 {
     Console.Error.WriteLine($"error: {e.Message}");
     return 1;

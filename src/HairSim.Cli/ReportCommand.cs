@@ -16,7 +16,7 @@ public static class ReportCommand
 
     public static int Execute(CliArgs a)
     {
-        string output = a.String("out", "docs/error-vs-runtime.md");
+        string output = a.OutputFile("out", "docs/error-vs-runtime.md");
         bool quick = a.Flag("quick");
         var path = ParsePath(a.String("path", "fast"));
         a.RejectUnknown();

@@ -20,7 +20,7 @@ public static class StabilityCommand
 
     public static int Execute(CliArgs a)
     {
-        string output = a.String("out", "docs/stability.md");
+        string output = a.OutputFile("out", "docs/stability.md");
         bool quick = a.Flag("quick");
         var path = ReportCommand.ParsePath(a.String("path", "fast"));
         a.RejectUnknown();

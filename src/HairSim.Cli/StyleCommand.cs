@@ -20,7 +20,7 @@ public static class StyleCommand
 
     public static int Execute(CliArgs a)
     {
-        string outDir = a.String("out", "out");
+        string outDir = a.OutputFolder("out", "out");
         double settle = a.Double("settle", 1), after = a.Double("after", 10);
         // The default bend model holds the style by itself; a global pull to the rest pose is optional.
         float stiffness = (float)a.Double("stiffness", 0);
