@@ -70,12 +70,19 @@ public sealed class HairPipeline
     {
         if (!float.IsFinite(dt) || dt <= 0f || dt > 1f)
             throw new ArgumentOutOfRangeException(nameof(dt), dt, "Frame time must be in (0, 1] seconds.");
+        var p = headTarget.Position; var q = headTarget.Rotation;
+        if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z) || !float.IsFinite(q.X) || !float.IsFinite(q.Y)
+            || !float.IsFinite(q.Z) || !float.IsFinite(q.W) || q.LengthSquared() < 1e-12f)
+            throw new ArgumentException($"The head pose must be finite with a non-zero rotation, got {p}, {q}.", nameof(headTarget));
         var world = _scene.World;
         var ctx = _ctx;
         var delta = RigidTransform.Delta(world.Head, headTarget);
         var requested = _scene.Settings;
         float headMove = (headTarget.Position - world.Head.Position).Length();
-        if (world.EditStamp != _reachStamp) { _scale = GroomScale.Of(world); _reachStamp = world.EditStamp; } // only after edits
+        // Settings are checked every frame, however they were changed (a property set after the first step included),
+        // and rest data after every edit: before anything moves, so a refused frame leaves the world as it was.
+        requested.Validate();
+        if (world.EditStamp != _reachStamp) { world.ValidateRestData(); _scale = GroomScale.Of(world); _reachStamp = world.EditStamp; } // only after edits
         bool teleported = headMove > requested.TeleportDistance * _scale.Reach || delta.Angle > requested.TeleportAngle;
         // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
         StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _scale);

@@ -133,9 +133,26 @@ public sealed class HairWorld
 
     // ---- access helpers (not for hot loops) ----
     public Vector3 GetPosition(int i) => new(PosX[i], PosY[i], PosZ[i]);
-    public void SetPosition(int i, Vector3 p) { PosX[i] = p.X; PosY[i] = p.Y; PosZ[i] = p.Z; }
+    /// <summary>Sets a particle's position; a non-finite one is refused and nothing changes.</summary>
+    public void SetPosition(int i, Vector3 p)
+    {
+        if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z))
+            throw new ArgumentException($"Position of particle {i} must be finite, got {p}.", nameof(p));
+        PutPosition(i, p);
+    }
+
+    /// <summary>The systems' own write (their results are checked by the step, not per particle).</summary>
+    internal void PutPosition(int i, Vector3 p) { PosX[i] = p.X; PosY[i] = p.Y; PosZ[i] = p.Z; }
     public Vector3 GetVelocity(int i) => new(VelX[i], VelY[i], VelZ[i]);
-    public void SetVelocity(int i, Vector3 v) { VelX[i] = v.X; VelY[i] = v.Y; VelZ[i] = v.Z; }
+    /// <summary>Sets a particle's velocity; a non-finite one is refused and nothing changes.</summary>
+    public void SetVelocity(int i, Vector3 v)
+    {
+        if (!float.IsFinite(v.X) || !float.IsFinite(v.Y) || !float.IsFinite(v.Z))
+            throw new ArgumentException($"Velocity of particle {i} must be finite, got {v}.", nameof(v));
+        PutVelocity(i, v);
+    }
+
+    internal void PutVelocity(int i, Vector3 v) { VelX[i] = v.X; VelY[i] = v.Y; VelZ[i] = v.Z; }
     public Vector3 GetRest(int i) => new(RestX[i], RestY[i], RestZ[i]);
     public int SkeletonStrand(int sheet) => SheetFirstStrand[sheet] + SheetStrandCount[sheet] / 2;
     public int RootIndex(int strand) => StrandFirst[strand];
@@ -223,6 +240,28 @@ public sealed class HairWorld
 
     /// <summary>Says that masses, rest pose, rest shape or live counts were written: caches derived from them are rebuilt.</summary>
     public void MarkEdited() => EditStamp++;
+
+    /// <summary>
+    /// Throws if a live particle's rest position, rest length or inverse mass is not finite (or a rest length or
+    /// inverse mass is negative): data written straight into the arrays is checked when the step first sees the
+    /// edit, before anything moves, instead of spreading NaN or freezing the scene.
+    /// </summary>
+    public void ValidateRestData()
+    {
+        for (int s = 0; s < StrandCount; s++)
+        {
+            int first = StrandFirst[s], end = first + StrandParticleCount[s];
+            for (int i = first; i < end; i++)
+            {
+                if (!float.IsFinite(RestX[i]) || !float.IsFinite(RestY[i]) || !float.IsFinite(RestZ[i]))
+                    throw new ArgumentException($"Strand {s}: the rest position of particle {i - first} is not finite.");
+                if (!float.IsFinite(RestLength[i]) || RestLength[i] < 0f)
+                    throw new ArgumentException($"Strand {s}: the rest length of particle {i - first} must be finite and ≥ 0, got {RestLength[i]}.");
+                if (!float.IsFinite(InvMass[i]) || InvMass[i] < 0f)
+                    throw new ArgumentException($"Strand {s}: the inverse mass of particle {i - first} must be finite and ≥ 0, got {InvMass[i]}.");
+            }
+        }
+    }
 
     /// <summary>Total rest length of the live part of all strands.</summary>
     public double TotalRestLength()

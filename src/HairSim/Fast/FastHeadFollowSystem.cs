@@ -201,8 +201,8 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         }
         for (; i < stop; i++)
         {
-            w.SetPosition(i, pose.Point(w.GetPosition(i)));
-            w.SetVelocity(i, pose.Direction(w.GetVelocity(i)));
+            w.PutPosition(i, pose.Point(w.GetPosition(i)));
+            w.PutVelocity(i, pose.Direction(w.GetVelocity(i)));
         }
     }
 

@@ -30,7 +30,7 @@ public sealed class CollideSystem : IHairSystem
                 for (int c = 0; c < colliders.Length; c++)
                 {
                     if (!colliders[c].Resolve(w.GetPosition(i), out var surface, out var normal, out _)) continue;
-                    w.SetPosition(i, surface);
+                    w.PutPosition(i, surface);
                     double vx = w.VelX[i], vy = w.VelY[i], vz = w.VelZ[i];
                     double vn = vx * normal.X + vy * normal.Y + vz * normal.Z;
                     if (vn < 0)

@@ -22,7 +22,7 @@ public sealed class HeadFollowSystem : IHairSystem
             for (int i = first; i < last; i++)
             {
                 if (w.InvMass[i] != 0f) continue;
-                w.SetPosition(i, head.TransformPoint(w.GetRest(i)));
+                w.PutPosition(i, head.TransformPoint(w.GetRest(i)));
                 w.VelX[i] = w.VelY[i] = w.VelZ[i] = 0f;
             }
         }
@@ -35,8 +35,8 @@ public sealed class HeadFollowSystem : IHairSystem
             int first = w.StrandFirst[s], last = first + w.StrandCapacity[s];
             for (int i = first; i < last; i++)
             {
-                w.SetPosition(i, delta.TransformPoint(w.GetPosition(i)));
-                w.SetVelocity(i, delta.TransformDirection(w.GetVelocity(i)));
+                w.PutPosition(i, delta.TransformPoint(w.GetPosition(i)));
+                w.PutVelocity(i, delta.TransformDirection(w.GetVelocity(i)));
             }
         }
     }
