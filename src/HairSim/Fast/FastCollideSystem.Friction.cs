@@ -38,8 +38,8 @@ public sealed partial class FastCollideSystem
 
     /// <summary>
     /// Every collider of the substep with friction, over strands [begin, end). The kernels take the start-of-substep
-    /// positions (<see cref="FrictionStarts"/>) in place of the rest positions they do not use; strands are run one by
-    /// one (16-lane chunks where wide, then 8-lane, then a padded tail), so no lane sees another strand's start.
+    /// positions (<see cref="FrictionStarts"/>, per particle like the world's arrays) in place of the rest positions
+    /// they do not use, through the same runs of live particles as the frictionless pass (ParticleRuns).
     /// </summary>
     private void ResolveWithFriction(FrameContext ctx, int substep, HairWorld w, int begin, int end)
     {
@@ -57,19 +57,18 @@ public sealed partial class FastCollideSystem
                 sx[i] = w.PosX[i] - h * w.VelX[i]; sy[i] = w.PosY[i] - h * w.VelY[i]; sz[i] = w.PosZ[i] - h * w.VelZ[i];
             }
         }
-        Span<float> tail = stackalloc float[10 * Vector<float>.Count];
         for (int c = 0; c < colliders.Length; c++)
         {
             var col = colliders[c];
             if (col.Kind == ColliderKind.Ellipsoid)
             {
                 var k = new EllipsoidKernel(col, slide, friction);
-                ForEachStrandParticle(w, begin, end, sx, sy, sz, ref k, tail);
+                ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide, sx, sy, sz);
             }
             else
             {
                 var k = new CapsuleKernel(col, slide, friction);
-                ForEachStrandParticle(w, begin, end, sx, sy, sz, ref k, tail);
+                ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide, sx, sy, sz);
             }
         }
         // This substep's end is the next one's start.
@@ -80,40 +79,6 @@ public sealed partial class FastCollideSystem
             w.PosY.AsSpan(first, n).CopyTo(sy.AsSpan(first, n));
             w.PosZ.AsSpan(first, n).CopyTo(sz.AsSpan(first, n));
             starts.Wrote(w, ctx, substep, s);
-        }
-    }
-
-    private void ForEachStrandParticle<TKernel>(HairWorld w, int begin, int end, float[] startX, float[] startY, float[] startZ,
-                                                ref TKernel kernel, Span<float> tail) where TKernel : struct, IWideParticleKernel
-    {
-        int width = Vector<float>.Count;
-        ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
-        ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
-        ref float m = ref Simd.At(w.InvMass, 0), rx = ref Simd.At(startX, 0), ry = ref Simd.At(startY, 0), rz = ref Simd.At(startZ, 0);
-        for (int s = begin; s < end; s++)
-        {
-            int i = w.StrandFirst[s], stop = i + w.StrandParticleCount[s];
-            if (_wide)
-                for (; i <= stop - 16; i += 16)
-                    kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
-                        ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
-                        ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
-            for (; i <= stop - width; i += width)
-                kernel.Chunk(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
-                    ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
-                    ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
-            int r = stop - i;
-            if (r <= 0) continue;
-            // A padded tail (padding lanes have inverse mass 0, so the kernel leaves them alone); only live lanes go back.
-            tail.Clear();
-            w.PosX.AsSpan(i, r).CopyTo(tail.Slice(0 * width)); w.PosY.AsSpan(i, r).CopyTo(tail.Slice(1 * width)); w.PosZ.AsSpan(i, r).CopyTo(tail.Slice(2 * width));
-            w.VelX.AsSpan(i, r).CopyTo(tail.Slice(3 * width)); w.VelY.AsSpan(i, r).CopyTo(tail.Slice(4 * width)); w.VelZ.AsSpan(i, r).CopyTo(tail.Slice(5 * width));
-            w.InvMass.AsSpan(i, r).CopyTo(tail.Slice(6 * width));
-            startX.AsSpan(i, r).CopyTo(tail.Slice(7 * width)); startY.AsSpan(i, r).CopyTo(tail.Slice(8 * width)); startZ.AsSpan(i, r).CopyTo(tail.Slice(9 * width));
-            kernel.Chunk(ref tail[0], ref tail[width], ref tail[2 * width], ref tail[3 * width], ref tail[4 * width], ref tail[5 * width],
-                ref tail[6 * width], ref tail[7 * width], ref tail[8 * width], ref tail[9 * width]);
-            tail.Slice(0 * width, r).CopyTo(w.PosX.AsSpan(i, r)); tail.Slice(1 * width, r).CopyTo(w.PosY.AsSpan(i, r)); tail.Slice(2 * width, r).CopyTo(w.PosZ.AsSpan(i, r));
-            tail.Slice(3 * width, r).CopyTo(w.VelX.AsSpan(i, r)); tail.Slice(4 * width, r).CopyTo(w.VelY.AsSpan(i, r)); tail.Slice(5 * width, r).CopyTo(w.VelZ.AsSpan(i, r));
         }
     }
 

@@ -36,9 +36,17 @@ internal static class ParticleRuns
     /// As <see cref="ForEachLive{TKernel}"/>, but whole 16-particle chunks go through the kernel's 16-lane chunk
     /// when <paramref name="wide"/> (the rest of a run through the 8-lane one).
     /// </summary>
-    public static void ForEachLiveWide<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel, bool wide) where TKernel : struct, IWideParticleKernel
+    public static void ForEachLiveWide<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel, bool wide) where TKernel : struct, IWideParticleKernel =>
+        ForEachLiveWide(w, begin, end, ref kernel, wide, w.RestX, w.RestY, w.RestZ);
+
+    /// <summary>
+    /// As above, with the kernel's last three inputs (rx, ry, rz) taken from other per-particle arrays than the rest
+    /// positions (friction: each particle's position at the substep's start).
+    /// </summary>
+    public static void ForEachLiveWide<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel, bool wide, float[] auxX, float[] auxY, float[] auxZ)
+        where TKernel : struct, IWideParticleKernel
     {
-        if (!wide) { ForEachLive(w, begin, end, ref kernel); return; }
+        if (!wide) { ForEachLive(w, begin, end, ref kernel, auxX, auxY, auxZ); return; }
         int width = Vector<float>.Count;
         Span<float> tail = stackalloc float[10 * width];
         for (int s = begin; NextRun(w, ref s, end, out int start, out int stop);)
@@ -46,25 +54,30 @@ internal static class ParticleRuns
             int i = start;
             ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
             ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
-            ref float m = ref Simd.At(w.InvMass, 0), rx = ref Simd.At(w.RestX, 0), ry = ref Simd.At(w.RestY, 0), rz = ref Simd.At(w.RestZ, 0);
+            ref float m = ref Simd.At(w.InvMass, 0), rx = ref Simd.At(auxX, 0), ry = ref Simd.At(auxY, 0), rz = ref Simd.At(auxZ, 0);
             for (; i <= stop - 16; i += 16)
                 kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
                     ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
                     ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
-            if (i < stop) RunNarrow(w, i, stop, ref kernel, tail);
+            if (i < stop) RunNarrow(w, i, stop, ref kernel, tail, auxX, auxY, auxZ);
         }
     }
 
     /// <summary>The 8-lane remainder of a run (not inlined: it keeps the 16-lane loop's inlining budget free).</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
-    private static void RunNarrow<TKernel>(HairWorld w, int start, int stop, ref TKernel kernel, Span<float> tail) where TKernel : struct, IParticleKernel =>
-        Run(w, start, stop, ref kernel, tail);
+    private static void RunNarrow<TKernel>(HairWorld w, int start, int stop, ref TKernel kernel, Span<float> tail, float[] auxX, float[] auxY, float[] auxZ)
+        where TKernel : struct, IParticleKernel =>
+        Run(w, start, stop, ref kernel, tail, auxX, auxY, auxZ);
 
-    public static void ForEachLive<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel) where TKernel : struct, IParticleKernel
+    public static void ForEachLive<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel) where TKernel : struct, IParticleKernel =>
+        ForEachLive(w, begin, end, ref kernel, w.RestX, w.RestY, w.RestZ);
+
+    private static void ForEachLive<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel, float[] auxX, float[] auxY, float[] auxZ)
+        where TKernel : struct, IParticleKernel
     {
         int width = Vector<float>.Count;
         Span<float> tail = stackalloc float[10 * width];
-        for (int s = begin; NextRun(w, ref s, end, out int start, out int stop);) Run(w, start, stop, ref kernel, tail);
+        for (int s = begin; NextRun(w, ref s, end, out int start, out int stop);) Run(w, start, stop, ref kernel, tail, auxX, auxY, auxZ);
     }
 
     /// <summary>
@@ -88,13 +101,14 @@ internal static class ParticleRuns
         return true;
     }
 
-    private static void Run<TKernel>(HairWorld w, int start, int stop, ref TKernel kernel, Span<float> tail) where TKernel : struct, IParticleKernel
+    private static void Run<TKernel>(HairWorld w, int start, int stop, ref TKernel kernel, Span<float> tail, float[] auxX, float[] auxY, float[] auxZ)
+        where TKernel : struct, IParticleKernel
     {
         int width = Vector<float>.Count;
         int i = start;
         ref float px = ref Simd.At(w.PosX, 0), py = ref Simd.At(w.PosY, 0), pz = ref Simd.At(w.PosZ, 0);
         ref float vx = ref Simd.At(w.VelX, 0), vy = ref Simd.At(w.VelY, 0), vz = ref Simd.At(w.VelZ, 0);
-        ref float m = ref Simd.At(w.InvMass, 0), rx = ref Simd.At(w.RestX, 0), ry = ref Simd.At(w.RestY, 0), rz = ref Simd.At(w.RestZ, 0);
+        ref float m = ref Simd.At(w.InvMass, 0), rx = ref Simd.At(auxX, 0), ry = ref Simd.At(auxY, 0), rz = ref Simd.At(auxZ, 0);
         for (; i <= stop - width; i += width)
             kernel.Chunk(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
                 ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
@@ -104,7 +118,7 @@ internal static class ParticleRuns
         tail.Clear();
         CopyIn(w.PosX, i, r, tail, 0); CopyIn(w.PosY, i, r, tail, 1); CopyIn(w.PosZ, i, r, tail, 2);
         CopyIn(w.VelX, i, r, tail, 3); CopyIn(w.VelY, i, r, tail, 4); CopyIn(w.VelZ, i, r, tail, 5);
-        CopyIn(w.InvMass, i, r, tail, 6); CopyIn(w.RestX, i, r, tail, 7); CopyIn(w.RestY, i, r, tail, 8); CopyIn(w.RestZ, i, r, tail, 9);
+        CopyIn(w.InvMass, i, r, tail, 6); CopyIn(auxX, i, r, tail, 7); CopyIn(auxY, i, r, tail, 8); CopyIn(auxZ, i, r, tail, 9);
         kernel.Chunk(ref tail[0], ref tail[width], ref tail[2 * width], ref tail[3 * width], ref tail[4 * width], ref tail[5 * width],
             ref tail[6 * width], ref tail[7 * width], ref tail[8 * width], ref tail[9 * width]);
         CopyOut(tail, 0, w.PosX, i, r); CopyOut(tail, 1, w.PosY, i, r); CopyOut(tail, 2, w.PosZ, i, r);
