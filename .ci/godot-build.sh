@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Compile check of the Godot project (HairSheet.csproj, Sdk Godot.NET.Sdk/4.7.1) in Debug and ExportRelease.
+# The csproj is built, not a solution, as the Godot editor builds and exports it; it stays next to project.godot,
+# where Godot requires it, while its solution is godot/HairSheet.sln (project.godot's dotnet/project/solution_directory)
+# and the root HairSheet.sln is the test solution that `dotnet test` runs without Godot (docs/godot.md).
 # ExportRelease has no TOOLS define and no GodotSharpEditor, so it catches editor code outside #if TOOLS.
 # If the package source lacks Godot.NET.Sdk (the project's NuGet mirror does: docs/toolchain.md), the check
 # is skipped with one line and exit 0; once the SDK restores, any build failure fails this script.
