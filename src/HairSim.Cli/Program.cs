@@ -1,4 +1,5 @@
 using HairSim.Cli;
+using HairSim.Cli.Studio;
 
 // hairsim <command> [options]: each command lives in its own file (RunCommand.cs, …).
 var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
@@ -10,6 +11,7 @@ var commands = new Dictionary<string, (string Help, Func<CliArgs, int> Run)>
     ["stability"] = (StabilityCommand.Help, StabilityCommand.Execute),
     ["bench"] = (BenchCommand.Help, BenchCommand.Execute),
     ["leave-out"] = (LeaveOutCommand.Help, LeaveOutCommand.Execute),
+    ["studio"] = (StudioCommand.Help, StudioCommand.Execute),
 };
 
 if (args.Length == 0 || args[0] is "-h" or "--help" or "help")

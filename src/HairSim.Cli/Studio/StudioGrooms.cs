@@ -1,0 +1,35 @@
+namespace HairSim.Cli.Studio;
+
+/// <summary>The grooms the studio offers by name: the reference scene and lighter ones for slower machines.</summary>
+public static class StudioGrooms
+{
+    public const string Default = "reference";
+
+    /// <summary>Name, what it is (shown in the page), and how to build it.</summary>
+    public static readonly IReadOnlyList<(string Name, string Description, Func<GroomSettings> Build)> All =
+    [
+        ("reference", "reference scene: 17,400 strands × 16 particles, 25 cm", GroomSettings.Reference),
+        ("medium", "5,220 strands × 16 particles, 25 cm", () => new GroomSettings { StrandsPerSheet = 12 }),
+        ("long", "6,960 strands × 24 particles, 45 cm", () => new GroomSettings { StrandsPerSheet = 16, ParticlesPerStrand = 24, StrandLength = 0.45f }),
+        ("short", "8,700 strands × 8 particles, 10 cm", () => new GroomSettings { StrandsPerSheet = 20, ParticlesPerStrand = 8, StrandLength = 0.1f }),
+        ("small", "960 strands × 12 particles, 25 cm (for slow machines and tests)", () => new GroomSettings { SheetCount = 120, StrandsPerSheet = 8, ParticlesPerStrand = 12 }),
+    ];
+
+    /// <summary>The named groom, with its strands per sheet (the density) overridden when given.</summary>
+    public static GroomSettings Create(string name, int? strandsPerSheet = null)
+    {
+        foreach (var g in All)
+        {
+            if (!string.Equals(g.Name, name, StringComparison.OrdinalIgnoreCase)) continue;
+            var settings = g.Build();
+            if (strandsPerSheet is int n)
+            {
+                if (n < 1 || n > 64) throw new ArgumentOutOfRangeException(nameof(strandsPerSheet), n, "Density must be 1 … 64 strands per sheet.");
+                settings.StrandsPerSheet = n;
+            }
+            settings.Validate();
+            return settings;
+        }
+        throw new ArgumentException($"Unknown groom '{name}'; choose one of: {string.Join(", ", All.Select(g => g.Name))}.");
+    }
+}

@@ -1,0 +1,247 @@
+// HairSheet Studio's page: wires the 3D view, the tools, the panel and the keys to the server.
+import { HairView } from './hair-view.js';
+import { ViewTool, CutTool, SelectTool, FitTool, HeadTool } from './tools.js';
+import { command, state, binary } from './api.js';
+
+const $ = id => document.getElementById(id);
+
+class Studio {
+  constructor() {
+    this.view = new HairView($('view'));
+    this.overlay = $('overlay');
+    this.tools = { view: new ViewTool(this), cut: new CutTool(this), select: new SelectTool(this), fit: new FitTool(this), head: new HeadTool(this) };
+    this.options = { selectShape: 'rectangle', rootsOnly: true, visibleOnly: true, brushRadius: 30 };
+    this.head = { position: [0, 0, 0], yaw: 0, pitch: 0, roll: 0, shake: false };
+    this.state = null;
+    this.framesReceived = 0;
+    this.framesDrawn = 0;
+    this.received = [];          // arrival times of the last second's frames, for the rate shown
+    this.ready = false;
+    this.busy = 0;
+    this.bindPanel();
+    this.bindPointer();
+    this.bindKeys();
+    this.setTool('view');
+  }
+
+  async start() {
+    await this.refreshState();
+    this.pumpFrames();
+    setInterval(() => this.refreshState().catch(e => this.say(e.message, true)), 250);
+    const draw = () => { this.drawOverlay(); this.view.render(); this.framesDrawn++; requestAnimationFrame(draw); };
+    requestAnimationFrame(draw);
+  }
+
+  /** Fetches frames one after another (one in flight); new topology whenever the strands' live counts may have changed. */
+  async pumpFrames() {
+    for (;;) {
+      try {
+        const buffer = await binary('frame');
+        let header = this.view.setFrame(buffer);
+        if (!this.view.topology || this.view.topology.revision !== header.revision || this.view.topology.particles !== header.particles) {
+          this.view.setTopology(await binary('topology'));
+          header = this.view.setFrame(buffer);
+        }
+        this.lastHeader = header;
+        this.framesReceived++;
+        const now = performance.now();
+        this.received.push(now);
+        while (this.received[0] < now - 1000) this.received.shift();
+        this.ready = true;
+      } catch (e) {
+        this.say(`Lost the server: ${e.message}`, true);
+        await new Promise(r => setTimeout(r, 1000));
+      }
+      await new Promise(r => requestAnimationFrame(r));
+    }
+  }
+
+  async refreshState() {
+    const s = await state();
+    this.state = s;
+    this.view.setColliders(s.colliders);
+    if (!sameArray(s.selection, this.lastSelection)) { this.lastSelection = s.selection; this.view.setSelection(s.selection); }
+    this.showState(s);
+  }
+
+  /** Runs a server command, shows its answer or its error, and refreshes the state. */
+  async run(action) {
+    this.busy++;
+    try { this.say(await action()); } catch (e) { this.say(e.message, true); } finally { this.busy--; }
+    await this.refreshState();
+  }
+
+  say(text, error = false) {
+    const m = $('message');
+    m.textContent = text;
+    m.classList.toggle('error', error);
+    clearTimeout(this.sayTimer);
+    if (text) this.sayTimer = setTimeout(() => { m.textContent = ''; }, error ? 8000 : 4000);
+  }
+
+  setTool(name) {
+    this.tool?.cancel();
+    this.toolName = name;
+    this.tool = this.tools[name];
+    for (const b of document.querySelectorAll('[data-tool]')) b.classList.toggle('active', b.dataset.tool === name);
+    $('stage').classList.toggle('drawing', this.tool.drawing);
+    $('hint').textContent = {
+      view: 'Drag to orbit, wheel to zoom, shift-drag to pan.',
+      cut: 'Draw across the hair where it should end.',
+      select: 'Drag to select strands (shift adds, alt removes). Right-drag orbits.',
+      fit: 'Draw from the selected strands\u2019 roots the shape they should take.',
+      head: 'Drag to move the head, shift-drag to turn it.',
+    }[name];
+  }
+
+  sendHead() {
+    // At most one head message in flight; the latest pose wins.
+    if (this.headInFlight) { this.headPending = true; return; }
+    this.headInFlight = true;
+    command('head', this.head).catch(e => this.say(e.message, true)).finally(() => {
+      this.headInFlight = false;
+      if (this.headPending) { this.headPending = false; this.sendHead(); }
+    });
+  }
+
+  bindPointer() {
+    const overlay = this.overlay;
+    const at = e => { const r = overlay.getBoundingClientRect(); return [e.clientX - r.left, e.clientY - r.top]; };
+    overlay.addEventListener('pointerdown', e => {
+      if (e.button !== 0 || !this.tool.drawing) return;   // other buttons reach the orbit controls
+      e.stopPropagation();
+      overlay.setPointerCapture(e.pointerId);
+      this.tool.down(at(e), e);
+    });
+    overlay.addEventListener('pointermove', e => { if (this.tool.points) this.tool.move(at(e), e); });
+    overlay.addEventListener('pointerup', e => { if (this.tool.points) this.tool.up(at(e), e); });
+    overlay.addEventListener('pointercancel', () => this.tool.cancel());
+    overlay.addEventListener('contextmenu', e => e.preventDefault());
+  }
+
+  drawOverlay() {
+    const o = this.overlay, dpr = window.devicePixelRatio || 1;
+    const w = Math.round(o.clientWidth * dpr), h = Math.round(o.clientHeight * dpr);
+    if (o.width !== w || o.height !== h) { o.width = w; o.height = h; }
+    const g = o.getContext('2d');
+    g.setTransform(dpr, 0, 0, dpr, 0, 0);
+    g.clearRect(0, 0, o.clientWidth, o.clientHeight);
+    this.tool.draw(g);
+  }
+
+  bindKeys() {
+    window.addEventListener('keydown', e => {
+      if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
+      const k = e.key, ctrl = e.ctrlKey || e.metaKey;
+      if (ctrl && (k === 'z' || k === 'Z')) { e.preventDefault(); this.run(() => command(e.shiftKey ? 'redo' : 'undo')); return; }
+      if (ctrl && (k === 'y' || k === 'Y')) { e.preventDefault(); this.run(() => command('redo')); return; }
+      if (ctrl) return;
+      const tools = { 1: 'view', 2: 'cut', 3: 'select', 4: 'fit', 5: 'head' };
+      if (tools[k]) { this.setTool(tools[k]); return; }
+      const step = 0.01, turn = 5 * Math.PI / 180, h = this.head;
+      const moves = {
+        ArrowLeft: () => { h.position[0] -= step; }, ArrowRight: () => { h.position[0] += step; },
+        ArrowUp: () => { h.position[1] += step; }, ArrowDown: () => { h.position[1] -= step; },
+        a: () => { h.yaw += turn; }, d: () => { h.yaw -= turn; }, w: () => { h.pitch -= turn; }, s: () => { h.pitch += turn; },
+        ' ': () => { h.shake = !h.shake; $('shake').checked = h.shake; },
+      };
+      if (moves[k]) { e.preventDefault(); moves[k](); this.sendHead(); return; }
+      if (k === 'p') { $('pause').checked = !$('pause').checked; this.run(() => command(`pause?paused=${$('pause').checked}`)); }
+      if (k === 'Escape') this.run(() => command('select/clear'));
+    });
+  }
+
+  bindPanel() {
+    for (const b of document.querySelectorAll('[data-tool]')) b.addEventListener('click', () => this.setTool(b.dataset.tool));
+    for (const r of document.querySelectorAll('input[name=shape]')) r.addEventListener('change', () => { this.options.selectShape = r.value; });
+    $('roots-only').addEventListener('change', e => { this.options.rootsOnly = e.target.checked; });
+    $('visible-only').addEventListener('change', e => { this.options.visibleOnly = e.target.checked; });
+    $('brush-radius').addEventListener('input', e => { this.options.brushRadius = +e.target.value; });
+    $('clear-selection').addEventListener('click', () => this.run(() => command('select/clear')));
+    $('undo').addEventListener('click', () => this.run(() => command('undo')));
+    $('redo').addEventListener('click', () => this.run(() => command('redo')));
+    $('regrow').addEventListener('click', () => this.run(() => command('regrow')));
+    $('reset').addEventListener('click', () => this.run(() => command('reset')));
+    $('load-file').addEventListener('change', async e => {
+      const file = e.target.files[0];
+      e.target.value = '';
+      if (file) await this.run(async () => command('load', await file.arrayBuffer()));
+      this.syncHeadFromState();
+    });
+    $('shake').addEventListener('change', e => { this.head.shake = e.target.checked; this.sendHead(); });
+    $('pause').addEventListener('change', e => this.run(() => command(`pause?paused=${e.target.checked}`)));
+    $('head-home').addEventListener('click', () => { Object.assign(this.head, { position: [0, 0, 0], yaw: 0, pitch: 0, roll: 0 }); this.sendHead(); });
+
+    // Settings: sag on a log scale (0.001 … 2), the rest linear; sent a moment after the slider stops.
+    const sliders = {
+      sag: { toValue: v => 10 ** (-3 + 3.3 * v / 100), toSlider: s => Math.round(100 * (Math.log10(Math.max(s, 1e-3)) + 3) / 3.3), fmt: v => v.toFixed(3) },
+      bendDamping: {}, damping: {}, gravity: { fmt: v => `${v.toFixed(2)} g` }, substeps: {}, staticFriction: {}, kineticFriction: {},
+    };
+    this.sliders = sliders;
+    for (const [name, s] of Object.entries(sliders)) {
+      s.toValue ??= v => +v; s.toSlider ??= v => v; s.fmt ??= v => (Number.isInteger(v) ? `${v}` : v.toFixed(2));
+      $(name).addEventListener('input', e => {
+        const value = s.toValue(+e.target.value);
+        $(`${name}-value`).textContent = s.fmt(value);
+        clearTimeout(s.timer);
+        s.editing = true;
+        s.timer = setTimeout(() => { s.editing = false; this.run(() => command('settings', { [name]: value })); }, 150);
+      });
+    }
+    $('path').addEventListener('change', e => this.run(() => command('settings', { path: e.target.value })));
+    $('density').addEventListener('input', e => { $('density-value').textContent = e.target.value; });
+    $('grow').addEventListener('click', async () => {
+      await this.run(() => command('groom', { name: $('groom').value, strandsPerSheet: +$('density').value }));
+      this.syncHeadFromState();
+    });
+  }
+
+  syncHeadFromState() {
+    const h = this.state?.head;
+    if (h) Object.assign(this.head, { position: [...h.position], yaw: h.yaw, pitch: h.pitch, roll: h.roll, shake: h.shake });
+    $('shake').checked = this.head.shake;
+  }
+
+  showState(s) {
+    const groom = $('groom');
+    if (groom.options.length !== s.grooms.length) {
+      groom.replaceChildren(...s.grooms.map(g => new Option(`${g.name}: ${g.description}`, g.name)));
+    }
+    if (document.activeElement !== groom && s.grooms.some(g => g.name === s.groom)) groom.value = s.groom;
+    for (const [name, slider] of Object.entries(this.sliders)) {
+      if (slider.editing || document.activeElement === $(name)) continue;
+      $(name).value = slider.toSlider(s.settings[name]);
+      $(`${name}-value`).textContent = slider.fmt(s.settings[name]);
+    }
+    if (document.activeElement !== $('path')) $('path').value = s.settings.path;
+    $('undo').disabled = s.undoCount === 0;
+    $('redo').disabled = s.redoCount === 0;
+    $('regrow').disabled = !s.canRegrow;
+    $('pause').checked = s.paused;
+    const m = s.metrics, rate = this.received.length;
+    const rows = [
+      ['strands', `${s.strands.toLocaleString()} (${s.cutStrands.toLocaleString()} cut)`],
+      ['particles live / all', `${s.liveParticles.toLocaleString()} / ${s.particles.toLocaleString()}`],
+      ['selected strands', s.selection.length.toLocaleString()],
+      ['simulation step', `${s.stepMs.toFixed(2)} ms (worst ${s.stepMsWorst.toFixed(1)})`],
+      ['simulation rate', `${s.simHz.toFixed(0)} Hz of 60`],
+      ['frames shown', `${rate} /s`],
+      ['length / rest length', `${(100 * m.lengthRatio).toFixed(3)} %`],
+      ['largest stretch', `${(100 * m.maxEdgeStretch).toFixed(3)} %`],
+      ['deepest penetration', `${m.maxPenetrationMm.toFixed(3)} mm (${m.particlesInside} inside)`],
+      ['undo / redo', `${s.undoCount} / ${s.redoCount}`],
+      ['time', `${s.simTime.toFixed(1)} s${s.paused ? ' (paused)' : ''}`],
+    ];
+    $('figures').replaceChildren(...rows.map(([k, v]) => {
+      const tr = document.createElement('tr');
+      tr.append(Object.assign(document.createElement('td'), { textContent: k }), Object.assign(document.createElement('td'), { textContent: v }));
+      return tr;
+    }));
+  }
+}
+
+function sameArray(a, b) { return a && b && a.length === b.length && a.every((x, i) => x === b[i]); }
+
+const studio = new Studio();
+window.studio = studio;   // for the browser tests and the console
+studio.start().catch(e => studio.say(`Could not reach the studio server: ${e.message}`, true));

@@ -1,0 +1,171 @@
+// HairSheet Studio in a real browser: real mouse and keyboard events on the page, checked against the library's
+// state as the server reports it. Run: npm test (after `dotnet build -c Release src/HairSim.Cli`).
+import { describe, it, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import path from 'node:path';
+import { missing, startServer, launchBrowser, until } from './harness.mjs';
+
+const skip = missing();
+if (skip) console.log(`studio browser tests: SKIPPED: ${skip}`);
+const artifacts = process.env.STUDIO_ARTIFACTS ?? path.join(process.cwd(), 'artifacts');
+
+describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
+  let server, browser, page, url;
+  const api = async p => (await fetch(new URL(`api/${p}`, url))).json();
+  const state = () => api('state');
+
+  /** Page coordinates of a world point, through the page's own camera. */
+  async function screen(point) {
+    const [x, y] = await page.evaluate(p => window.studio.view.project(p), point);
+    const box = await page.locator('#view').boundingBox();
+    return [box.x + x, box.y + y];
+  }
+
+  /** A real mouse drag through page points. */
+  async function drag(points) {
+    await page.mouse.move(...points[0]);
+    await page.mouse.down();
+    for (const p of points.slice(1)) await page.mouse.move(...p, { steps: 4 });
+    await page.mouse.up();
+  }
+
+  async function download(selector) {
+    const [file] = await Promise.all([page.waitForEvent('download'), page.click(selector)]);
+    return readFileSync(await file.path());
+  }
+
+  before(async () => {
+    mkdirSync(artifacts, { recursive: true });
+    server = startServer(['--groom', 'small']);
+    url = await server.url;
+    browser = await launchBrowser();
+    page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
+    page.on('pageerror', e => console.log(`page error: ${e.message}`));
+    await page.goto(url);
+    await until(() => page.evaluate(() => window.studio?.ready && window.studio.framesReceived > 10), 'the first frames');
+    // Let the hair settle so strokes meet it where it hangs.
+    await until(async () => (await state()).simTime > 1.5, 'the hair to settle');
+  });
+
+  after(async () => {
+    await browser?.close();
+    server?.stop();
+  });
+
+  it('draws the hair and the head (not a blank canvas)', async () => {
+    const stats = await page.evaluate(() => window.studio.view.pixelStats());
+    await page.screenshot({ path: path.join(artifacts, 'studio.png') });
+    assert.ok(stats.differing > 0.02, `only ${(100 * stats.differing).toFixed(2)} % of the canvas is drawn`);
+    assert.ok(stats.colours > 100, `only ${stats.colours} colours on the canvas`);
+    const s = await state();
+    assert.equal(s.strands, 960);
+    assert.ok(s.simHz > 0 || s.frame > 60, 'the simulation runs');
+  });
+
+  it('cuts the strands a mouse stroke crosses, at the stroke', async () => {
+    const before = await state();
+    await page.click('[data-tool=cut]');
+    const y = -0.12;   // below the chin: the hair hanging in front of and beside the face
+    const left = await screen([-0.3, y, 0.1]), right = await screen([0.3, y, 0.1]);
+    await drag([left, [(left[0] + right[0]) / 2, left[1]], right]);
+    const after = await until(async () => { const s = await state(); return s.cutStrands > 0 && s; }, 'the cut');
+    assert.ok(after.cutStrands > 20, `${after.cutStrands} strands cut`);
+    assert.ok(after.liveParticles < before.liveParticles, 'particles past the cut are gone');
+    assert.ok(after.totalRestLength < before.totalRestLength - 0.05 * after.cutStrands * 0.25,
+      `rest length ${before.totalRestLength.toFixed(2)} → ${after.totalRestLength.toFixed(2)} m`);
+    assert.equal(after.undoCount, before.undoCount + 1);
+    // The page drew the shorter strands: its topology follows the server's.
+    await until(() => page.evaluate(r => window.studio.view.topology.revision === r, after.revision), 'the new topology');
+  });
+
+  it('selects the fringe with a rectangle and fits it to a stroke', async () => {
+    const before = await state();
+    const savedBefore = Buffer.from(await (await fetch(new URL('api/save', url))).arrayBuffer());
+    await page.click('[data-tool=select]');
+    const a = await screen([-0.06, 0.1, 0.08]), b = await screen([0.06, 0.02, 0.1]);
+    await drag([a, [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], b]);
+    const selected = await until(async () => { const s = await state(); return s.selection.length > 0 && s; }, 'a selection');
+    assert.ok(selected.selection.length >= 5, `${selected.selection.length} strands selected`);
+    await until(() => page.evaluate(() => window.studio.view.selection.size > 0), 'the selection highlighted');
+
+    await page.click('[data-tool=fit]');
+    const stroke = [];
+    for (let i = 0; i <= 12; i++) {
+      const t = i / 12;   // from the top of the head forwards and up: a quiff
+      stroke.push(await screen([0, 0.1 + 0.05 * Math.sin(Math.PI * t), 0.05 + 0.12 * t]));
+    }
+    await drag(stroke);
+    const after = await until(async () => { const s = await state(); return s.undoCount === before.undoCount + 1 && s; }, 'the fit');
+    assert.equal(after.message.startsWith('Fitted'), true, after.message);
+    const savedAfter = Buffer.from(await (await fetch(new URL('api/save', url))).arrayBuffer());
+    assert.notDeepEqual(savedAfter, savedBefore, 'the fit changed the haircut');
+  });
+
+  it('undoes with Ctrl+Z back to the uncut groom, and redoes', async () => {
+    const before = await state();
+    await page.keyboard.press('Control+z');
+    await page.keyboard.press('Control+z');
+    const undone = await until(async () => { const s = await state(); return s.undoCount === before.undoCount - 2 && s; }, 'two undos');
+    assert.equal(undone.cutStrands, 0);
+    assert.equal(undone.liveParticles, undone.particles);
+    assert.equal(undone.totalRestLength, (await api('state')).totalRestLength);
+    await page.click('#redo');
+    const redone = await until(async () => { const s = await state(); return s.redoCount === 1 && s; }, 'a redo');
+    assert.ok(redone.cutStrands > 0, 'the cut is back');
+  });
+
+  it('saves a .hairstyle, loads it back after another change, and gets the saved haircut', async () => {
+    const saved = await state();
+    const file = await download('#save');
+    assert.equal(file.subarray(0, 4).toString('latin1').length, 4);
+    writeFileSync(path.join(artifacts, 'haircut.hairstyle'), file);
+    await page.click('#clear-selection');
+    await until(async () => (await state()).selection.length === 0, 'the selection cleared');
+    await page.click('#regrow');
+    await until(async () => (await state()).cutStrands === 0, 'the regrow');
+    await page.setInputFiles('#load-file', path.join(artifacts, 'haircut.hairstyle'));
+    const loaded = await until(async () => { const s = await state(); return s.message.startsWith('Loaded') && s; }, 'the load');
+    assert.equal(loaded.cutStrands, saved.cutStrands);
+    assert.equal(loaded.liveParticles, saved.liveParticles);
+    assert.ok(Math.abs(loaded.totalRestLength - saved.totalRestLength) < 1e-9, 'the same rest lengths');
+  });
+
+  it('refuses a corrupt file with a message and keeps the haircut', async () => {
+    const before = await state();
+    const bad = path.join(artifacts, 'corrupt.hairstyle');
+    writeFileSync(bad, Buffer.from('not a hairstyle at all'));
+    await page.setInputFiles('#load-file', bad);
+    await until(() => page.evaluate(() => document.querySelector('#message').classList.contains('error')), 'the error message');
+    const after = await state();
+    assert.equal(after.liveParticles, before.liveParticles);
+    assert.equal(after.cutStrands, before.cutStrands);
+  });
+
+  it('exports the strands as .hair, OBJ and USD', async () => {
+    const hair = await download('a[href="api/export/hair"]');
+    assert.equal(hair.subarray(0, 4).toString('latin1'), 'HAIR');
+    const obj = (await download('a[href="api/export/obj"]')).toString();
+    assert.match(obj, /^v /m);
+    assert.match(obj, /^l /m);
+    const usd = (await download('a[href="api/export/usda"]')).toString();
+    assert.match(usd, /#usda 1\.0/);
+  });
+
+  it('changes settings live from the panel', async () => {
+    await page.locator('#gravity').fill('0.5');
+    await until(async () => Math.abs((await state()).settings.gravity - 0.5) < 1e-6, 'gravity 0.5 g');
+    await page.selectOption('#path', 'Reference');
+    await until(async () => (await state()).settings.path === 'Reference', 'the reference path');
+  });
+
+  it('moves and shakes the head from the keyboard', async () => {
+    await page.click('[data-tool=view]');
+    await page.keyboard.press('ArrowRight');
+    await page.keyboard.press('Space');
+    const s = await until(async () => { const t = await state(); return t.head.shake && t; }, 'the shake');
+    assert.ok(Math.abs(s.head.position[0] - 0.01) < 1e-6, `head at x = ${s.head.position[0]}`);
+    await page.keyboard.press('Space');
+    await until(async () => !(await state()).head.shake, 'the shake to stop');
+  });
+});
