@@ -47,9 +47,11 @@ public static class HairEditAdapter
 public sealed class HairEditSession
 {
     private readonly EditHistory _history;
+    private readonly HairWorld _world;
 
     public HairEditSession(HairScene scene)
     {
+        _world = scene.World;
         _history = new EditHistory();
         scene.SetComponent(_history);
     }
@@ -57,6 +59,10 @@ public sealed class HairEditSession
     public void Do(HairEdit edit) => _history.Do(edit.Command);
     public bool Undo() => _history.Undo();
     public bool Redo() => _history.Redo();
+    /// <summary>Whether anything can be undone or redone: hair with no entries is not worth keeping after a regrow.</summary>
+    public bool HasEntries => _history.CanUndo || _history.CanRedo;
+    /// <summary>Whether the edit was computed on this session's hair (an edit applies only to the world it was made on).</summary>
+    public bool Owns(HairEdit edit) => edit.Command.World == _world;
 }
 
 /// <summary>The styled state (cuts, fitted rest shapes) as bytes in HairSim's versioned hairstyle format.</summary>

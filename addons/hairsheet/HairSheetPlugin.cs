@@ -56,16 +56,30 @@ public partial class HairSheetPlugin : EditorPlugin
             _toolbar.QueueFree();
         }
         _toolbar = null; _cutButton = null; _fitButton = null; _hint = null;
-        _edited = null; _tool = null;
+        Follow(null);
+        _tool = null;
     }
 
     public override bool _Handles(GodotObject @object) => @object is HairSystem3D;
 
     public override void _Edit(GodotObject? @object)
     {
-        _edited = @object as HairSystem3D;
+        Follow(@object as HairSystem3D);
         _capture.Cancel();
         _fit.Reset();
+    }
+
+    /// <summary>Edits the given hair node, showing in the toolbar why an undo or redo of one of its edits did nothing.</summary>
+    private void Follow(HairSystem3D? hair)
+    {
+        if (_edited != null && IsInstanceValid(_edited)) _edited.EditSkipped -= OnEditSkipped;
+        _edited = hair;
+        if (_edited != null) _edited.EditSkipped += OnEditSkipped;
+    }
+
+    private void OnEditSkipped(string message)
+    {
+        if (_hint != null) _hint.Text = message;
     }
 
     public override void _MakeVisible(bool visible)
@@ -100,18 +114,22 @@ public partial class HairSheetPlugin : EditorPlugin
 
     private void Commit(Camera3D camera)
     {
-        if (_edited?.Scene == null || _tool == null) return;
+        if (_edited == null || _tool == null) return;
+        // Read first: it applies a pending regrow, so the edit is computed on the hair this generation names.
+        int generation = _edited.Generation;
+        if (_edited.Scene == null) return;
         try
         {
             var cam = GodotConvert.StrokeCamera(camera, camera.GetViewport().GetVisibleRect().Size);
             var edit = _tool.Complete(_edited.Scene, _capture.Completed, cam);
             if (edit == null) { ShowHint(); return; }
-            // The do-method applies the staged edit on commit and redoes it later; the undo-method reverts it.
+            // The do-method applies the staged edit on commit and redoes it later; the undo-method reverts it. Both
+            // name the hair generation: after a regrow an entry acts only once its hair is back (Logic/HairGenerations).
             _edited.StageEdit(edit);
             var undo = GetUndoRedo();
             undo.CreateAction(edit.Name, UndoRedo.MergeMode.Disable, _edited);
-            undo.AddDoMethod(_edited, nameof(HairSystem3D.RedoEdit));
-            undo.AddUndoMethod(_edited, nameof(HairSystem3D.UndoEdit));
+            undo.AddDoMethod(_edited, nameof(HairSystem3D.RedoEditIn), generation, edit.Name);
+            undo.AddUndoMethod(_edited, nameof(HairSystem3D.UndoEditIn), generation, edit.Name);
             undo.CommitAction();
             ShowHint();
         }

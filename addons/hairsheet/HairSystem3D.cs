@@ -12,7 +12,8 @@ namespace HairSheet;
 /// collider nodes call for, steps it in _PhysicsProcess with a fixed step, and pins the roots to a head
 /// node's global transform (a game character's head bone or an AR-tracked head). The groom comes from the
 /// assigned <see cref="Hairstyle"/> if any, else from the Groom properties. Edits (cut, fit) go through
-/// <see cref="ApplyEdit"/> at run time, or through the editor's undo manager (StageEdit + RedoEdit/UndoEdit).
+/// <see cref="ApplyEdit"/> at run time, or through the editor's undo manager (StageEdit + RedoEditIn/UndoEditIn, which
+/// name the hair generation the edit was made on: see <see cref="Generation"/>).
 /// </summary>
 [Tool]
 [GlobalClass]
@@ -20,6 +21,11 @@ public partial class HairSystem3D : Node3D
 {
     [Signal] public delegate void SceneRebuiltEventHandler();
     [Signal] public delegate void StyleChangedEventHandler();
+    /// <summary>An editor undo or redo entry did nothing because its hair is not the one shown; the message says why.</summary>
+    [Signal] public delegate void EditSkippedEventHandler(string message);
+
+    /// <summary>One growth: the scene, its edit history and the groom it was grown from.</summary>
+    private sealed record GrownHair(HairScene Scene, HairEditSession Edits, GroomSettings Groom);
 
     private readonly HairNodeSettings _settings = new();
     // Each exported value has its own field with an initializer equal to HairNodeSettings' default: Godot's source
@@ -57,6 +63,9 @@ public partial class HairSystem3D : Node3D
     private IDisposableDispatcher? _dispatcher;
     private HairEditSession? _edits;
     private HairEdit? _pendingEdit;
+    // Earlier growths that hold edits are kept (two: each is a whole scene), so undoing the value change that regrew
+    // the hair brings them back with their history (Logic/HairGenerations).
+    private readonly HairGenerations<GrownHair> _generations = new(maxKept: 2);
     private FixedStepClock _clock = new(1.0 / 60);
     private GroomSettings? _groom;
     private HairMultiMeshRenderer? _renderer;
@@ -130,6 +139,19 @@ public partial class HairSystem3D : Node3D
     /// <summary>The hair's scene; with <see cref="StepOnWorker"/>, reading it first waits for the step under way.</summary>
     public HairScene? Scene { get { Settle(); return _scene; } }
     public HairSimulation? Simulation { get { Settle(); return _simulation; } }
+    /// <summary>
+    /// The live hair's generation (a regrow starts a new one); the editor's undo entries carry it. Reading it first
+    /// applies a pending regrow, so an edit computed after reading it is made on the hair it names.
+    /// </summary>
+    public int Generation
+    {
+        get
+        {
+            Settle();
+            if (_needsRebuild) Rebuild();
+            return _generations.Current;
+        }
+    }
     /// <summary>Wall time of the last physics frame's hair steps, in milliseconds.</summary>
     public double LastStepMilliseconds { get; private set; }
     public HairNodeSettings Settings => _settings;
@@ -152,6 +174,8 @@ public partial class HairSystem3D : Node3D
 
     public override void _EnterTree()
     {
+        // Back in the tree after _ExitTree stopped the workers: the same inputs reinstall the live hair with its edits
+        // and history (Rebuild), they do not regrow it.
         if (_scene != null && _dispatcher == null) _needsRebuild = true;
     }
 
@@ -183,11 +207,15 @@ public partial class HairSystem3D : Node3D
         Draw();
     }
 
+    /// <summary>
+    /// Shown only in the editor's Scene dock, so nothing here may depend on running in the editor: invalid values and
+    /// a mirrored or degenerate head. A missing renderer child is not a problem (the node creates one), so it is not
+    /// reported.
+    /// </summary>
     public override string[] _GetConfigurationWarnings()
     {
         var w = new List<string>(_problems);
         if (_headProblem != null) w.Add(_headProblem);
-        if (FindRenderer() == null) w.Add("No HairMultiMeshRenderer child: one is created when the hair is grown.");
         return w.ToArray();
     }
 
@@ -201,8 +229,12 @@ public partial class HairSystem3D : Node3D
         if (IsInsideTree()) UpdateConfigurationWarnings();
     }
 
-    /// <summary>Builds a new scene from the settings; invalid settings keep the running scene and report every problem.</summary>
-    public void Rebuild()
+    /// <summary>
+    /// Grows the hair the settings call for; invalid settings keep the running hair and report every problem. Inputs
+    /// equal to the live hair's keep it (with its edits); inputs of a kept earlier generation bring that one back with
+    /// its history; <paramref name="fresh"/> regrows even for the live hair's inputs (a reset to the groom as grown).
+    /// </summary>
+    public void Rebuild(bool fresh = false)
     {
         _needsRebuild = false;
         StopWorker(); // the worker belongs to the simulation being replaced
@@ -211,6 +243,18 @@ public partial class HairSystem3D : Node3D
         if (_problems.Count > 0)
         {
             GD.PushError($"{Name}: " + string.Join(" ", _problems));
+            return;
+        }
+        string key = GrowthKey.Of(_settings, _hairstyle?.ToRecord(), _hairstyle?.GetInstanceId() ?? 0);
+        bool keepLive = _edits?.HasEntries == true;
+        if (!fresh && key == _generations.CurrentKey && _generations.Live is { } live)
+        {
+            if (_simulation == null) Install(live, restored: false); // back in the tree: new workers, same hair
+            return;
+        }
+        if (!fresh && _generations.TryRestore(key, keepLive, out var kept) && kept != null)
+        {
+            Install(kept, restored: true);
             return;
         }
         HairScene scene;
@@ -236,13 +280,22 @@ public partial class HairSystem3D : Node3D
             GD.PushError($"{Name}: {e.Message}");
             return;
         }
-        _groom = groom;
+        var grown = new GrownHair(scene, new HairEditSession(scene), groom);
+        _generations.Adopt(key, grown, keepLive);
+        Install(grown, restored: false);
+    }
+
+    /// <summary>Makes grown (or kept) hair the node's: head pose, colliders, a new simulation, the renderer.</summary>
+    private void Install(GrownHair hair, bool restored)
+    {
+        _groom = hair.Groom;
+        var scene = hair.Scene;
         scene.World.PlaceHead(HeadPose());
         SyncColliders(scene);
         _dispatcher ??= DispatcherRegistry.Create();
         _scene = scene;
         _simulation = new HairSimulation(scene, dispatcher: _dispatcher);
-        _edits = new HairEditSession(scene);
+        _edits = hair.Edits;
         _pendingEdit = null;
         _clock = new FixedStepClock(_settings.FixedStep);
         // One step so the render strands exist before the first frame is drawn.
@@ -251,6 +304,8 @@ public partial class HairSystem3D : Node3D
         _renderer.Bind(scene.RenderOutput!, _settings.ToLook(), RootColor, TipColor);
         Draw();
         EmitSignal(SignalName.SceneRebuilt);
+        // A kept generation's style is what the scene file must save again.
+        if (restored) OnStyleChanged();
     }
 
     // ---- edits ----
@@ -264,24 +319,65 @@ public partial class HairSystem3D : Node3D
         OnStyleChanged();
     }
 
-    /// <summary>Editor: remember an edit so the undo manager's first do-call (RedoEdit) applies it.</summary>
+    /// <summary>Editor: remember an edit so the undo manager's first do-call (RedoEditIn) applies it.</summary>
     public void StageEdit(HairEdit edit) => _pendingEdit = edit;
 
-    /// <summary>Undo manager do-method: applies the staged edit, or redoes the last undone one.</summary>
+    /// <summary>Applies the staged edit, or redoes the last undone one.</summary>
     public void RedoEdit()
     {
         Settle();
         if (_edits == null) return;
-        if (_pendingEdit != null) { _edits.Do(_pendingEdit); _pendingEdit = null; }
+        if (_pendingEdit != null)
+        {
+            var edit = _pendingEdit;
+            _pendingEdit = null;
+            // An edit is computed on one world; staged on hair that was regrown since, it would change the old world.
+            if (!_edits.Owns(edit)) { Skip($"\"{edit.Name}\" was computed on hair that has been regrown since: not applied."); return; }
+            _edits.Do(edit);
+        }
         else if (!_edits.Redo()) return;
         OnStyleChanged();
     }
 
-    /// <summary>Undo manager undo-method (and the run-time Undo button).</summary>
+    /// <summary>Undoes the last edit of the live hair (the run-time Undo button).</summary>
     public void UndoEdit()
     {
         Settle();
         if (_edits != null && _edits.Undo()) OnStyleChanged();
+    }
+
+    /// <summary>
+    /// Editor undo manager do-method: <see cref="RedoEdit"/> when <paramref name="generation"/> is the live hair's;
+    /// otherwise nothing changes and <see cref="EditSkipped"/> (and the Output panel) says why.
+    /// </summary>
+    public void RedoEditIn(int generation, string editName)
+    {
+        if (IsLiveForEditor(generation, editName, undo: false)) RedoEdit();
+        else _pendingEdit = null;
+    }
+
+    /// <summary>Editor undo manager undo-method: <see cref="UndoEdit"/> on the hair the entry was made on, or a message.</summary>
+    public void UndoEditIn(int generation, string editName)
+    {
+        if (IsLiveForEditor(generation, editName, undo: true)) UndoEdit();
+    }
+
+    private bool IsLiveForEditor(int generation, string editName, bool undo)
+    {
+        Settle();
+        // An undone or redone value change regrows on the next physics frame; the entries after it in the same undo
+        // sequence must see that hair (or the kept generation it brings back) first.
+        if (_needsRebuild) Rebuild();
+        string? why = _generations.Explain(generation, editName, undo);
+        if (why == null) return true;
+        Skip(why);
+        return false;
+    }
+
+    private void Skip(string why)
+    {
+        GD.PushWarning($"{Name}: {why}");
+        EmitSignal(SignalName.EditSkipped, why);
     }
 
     /// <summary>Back to the groom as grown (the style data is cleared).</summary>
@@ -290,7 +386,7 @@ public partial class HairSystem3D : Node3D
         if (_hairstyle != null && !Engine.IsEditorHint())
             _hairstyle = (Hairstyle)_hairstyle.Duplicate();   // never clear a shared resource at run time
         if (_hairstyle != null) _hairstyle.StyleData = Array.Empty<byte>();
-        Rebuild();
+        Rebuild(fresh: true);
         EmitSignal(SignalName.StyleChanged);
     }
 
@@ -417,7 +513,8 @@ public partial class HairSystem3D : Node3D
 
     private HairMultiMeshRenderer? FindRenderer()
     {
-        foreach (var child in GetChildren())
+        // Internal children too: the renderer this node creates is one (kept out of the saved scene).
+        foreach (var child in GetChildren(includeInternal: true))
             if (child is HairMultiMeshRenderer r) return r;
         return null;
     }
