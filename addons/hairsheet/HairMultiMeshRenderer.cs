@@ -21,6 +21,7 @@ public partial class HairMultiMeshRenderer : MultiMeshInstance3D
     private StrandRenderLayout _layout = StrandRenderLayout.PositionTexture;
     private float _specularPower = 80f;
     private float _specularStrength = 0.35f;
+    private Shader? _strandShader;
     private MultiMesh? _multiMesh;
     private ShaderMaterial? _material;
     private SegmentInstanceBuffer? _segments;
@@ -32,8 +33,8 @@ public partial class HairMultiMeshRenderer : MultiMeshInstance3D
     private Color _rootColor = new(0.16f, 0.10f, 0.06f), _tipColor = new(0.45f, 0.32f, 0.20f);
 
     [Export] public StrandRenderLayout Layout { get => _layout; set { _layout = value; Rebind(); } }
-    /// <summary>The strand shader; empty = the addon's hair_strand.gdshader.</summary>
-    [Export] public Shader? StrandShader { get; set; }
+    /// <summary>The strand shader; empty = the addon's hair_strand.gdshader. A change rebuilds the material at once.</summary>
+    [Export] public Shader? StrandShader { get => _strandShader; set { _strandShader = value; Rebind(); } }
     [Export(PropertyHint.Range, "1,512,1")] public float SpecularPower { get => _specularPower; set { _specularPower = value; _material?.SetShaderParameter("specular_power", value); } }
     [Export(PropertyHint.Range, "0,2,0.01")] public float SpecularStrength { get => _specularStrength; set { _specularStrength = value; _material?.SetShaderParameter("specular_strength", value); } }
 
@@ -87,7 +88,7 @@ public partial class HairMultiMeshRenderer : MultiMeshInstance3D
         mm.TransformFormat = MultiMesh.TransformFormatEnum.Transform3D;
         mm.UseColors = false;
         mm.UseCustomData = true;
-        _material = new ShaderMaterial { Shader = StrandShader ?? GD.Load<Shader>(DefaultShaderPath) };
+        _material = new ShaderMaterial { Shader = _strandShader ?? GD.Load<Shader>(DefaultShaderPath) };
         _segments = null; _texture = null; _image = null; _positions = null;
         if (_layout == StrandRenderLayout.SegmentInstances)
         {

@@ -24,19 +24,28 @@ public partial class HairStrokeTool : Node
     private readonly FitTool _fit = new();
     private HairToolKind _kind = HairToolKind.Cut;
     private Line2D? _strokeLine, _areaLine;
+    private Color _strokeColor = new(1f, 0.85f, 0.2f);
 
     [Export] public HairSystem3D? Hair { get; set; }
     /// <summary>The camera strokes are seen through; empty = the viewport's current camera.</summary>
     [Export] public Camera3D? Camera { get; set; }
     [Export] public HairToolKind Tool { get => _kind; set { _kind = value; _capture.Cancel(); _fit.Reset(); Redraw(); EmitHint(); } }
-    [Export] public Color StrokeColor { get; set; } = new(1f, 0.85f, 0.2f);
+    /// <summary>Colour of the stroke being drawn (the fit area at 60 % opacity); a change recolours the lines at once.</summary>
+    [Export] public Color StrokeColor { get => _strokeColor; set { _strokeColor = value; Recolor(); } }
 
     public override void _Ready()
     {
-        _strokeLine = new Line2D { Width = 3f, DefaultColor = StrokeColor, Antialiased = true };
-        _areaLine = new Line2D { Width = 2f, DefaultColor = StrokeColor with { A = 0.6f }, Antialiased = true, Closed = true };
+        _strokeLine = new Line2D { Width = 3f, Antialiased = true };
+        _areaLine = new Line2D { Width = 2f, Antialiased = true, Closed = true };
+        Recolor();
         AddChild(_strokeLine);
         AddChild(_areaLine);
+    }
+
+    private void Recolor()
+    {
+        if (_strokeLine != null) _strokeLine.DefaultColor = _strokeColor;
+        if (_areaLine != null) _areaLine.DefaultColor = _strokeColor with { A = 0.6f };
     }
 
     public override void _UnhandledInput(InputEvent e)
