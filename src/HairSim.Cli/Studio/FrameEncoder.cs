@@ -1,5 +1,6 @@
 using System.Buffers.Binary;
 using System.Numerics;
+using System.Runtime.InteropServices;
 
 namespace HairSim.Cli.Studio;
 
@@ -58,7 +59,20 @@ public static class FrameEncoder
         BinaryPrimitives.WriteSingleLittleEndian(h[60..], stepMs);
 
         float inv = 1f / quantum;
-        var data = output[FrameHeaderBytes..];
+        var data = output.Slice(FrameHeaderBytes, 6 * n);
+        if (BitConverter.IsLittleEndian)
+        {
+            // The wire is little-endian: write the shorts straight into the buffer (this runs once per streamed frame).
+            var q16 = MemoryMarshal.Cast<byte, short>(data);
+            for (int i = 0; i < n; i++)
+            {
+                var p = new Vector3(x[i], y[i], z[i]);
+                if (!float.IsFinite(p.X + p.Y + p.Z)) p = origin;
+                var d = (p - origin) * inv;
+                q16[3 * i] = Quantise(d.X); q16[3 * i + 1] = Quantise(d.Y); q16[3 * i + 2] = Quantise(d.Z);
+            }
+            return;
+        }
         for (int i = 0; i < n; i++)
         {
             var p = new Vector3(x[i], y[i], z[i]);

@@ -40,8 +40,11 @@ public sealed class StudioSession : IDisposable
     private double _simHz;
     private WorldMetrics _metrics;
 
-    private byte[]? _frameCache;
-    private long _frameCacheFrame = -1;
+    // The latest encoded frame, published by the simulation thread after a step when a page asked for one, so a
+    // request never waits for a step to finish (it gets the frame one step old) and the step never waits for the network.
+    private sealed record EncodedFrame(byte[] Bytes, long Frame, int Revision);
+    private volatile EncodedFrame? _published;
+    private volatile bool _frameWanted;
 
     private Thread? _loop;
     private volatile bool _stop;
@@ -95,6 +98,7 @@ public sealed class StudioSession : IDisposable
             _simTime += FrameSeconds;
             if (_frame % 15 == 0) _metrics = WorldMetrics.Measure(_scene);
             if (_metrics.NonFinite > 0) { _paused = true; _message = "The simulation produced non-finite values and was paused: undo the last change or reset."; }
+            if (_frameWanted) { _frameWanted = false; Publish(); }
             return true;
         }
     }
@@ -114,19 +118,31 @@ public sealed class StudioSession : IDisposable
 
     // ---------------- what the page reads ----------------
 
-    /// <summary>The latest frame in the wire format of <see cref="FrameEncoder.EncodeFrame"/> (shared, do not modify).</summary>
+    /// <summary>
+    /// The latest frame in the wire format of <see cref="FrameEncoder.EncodeFrame"/> (shared, do not modify). While the
+    /// simulation runs on its thread this returns at once with the last published frame and asks for the next one.
+    /// </summary>
     public byte[] Frame()
     {
+        var p = _published;
+        if (_loop != null && !_paused && p != null && p.Revision == _revision)
+        {
+            _frameWanted = true;
+            return p.Bytes;
+        }
         lock (_gate)
         {
-            if (_frameCache == null || _frameCacheFrame != _frame || _frameCache.Length != FrameEncoder.FrameBytes(_scene.World))
-            {
-                var b = new byte[FrameEncoder.FrameBytes(_scene.World)];
-                FrameEncoder.EncodeFrame(_scene.World, _frame, _revision, (float)_stepMs, b);
-                _frameCache = b; _frameCacheFrame = _frame;
-            }
-            return _frameCache;
+            if (_published is not { } q || q.Frame != _frame || q.Revision != _revision) Publish();
+            return _published!.Bytes;
         }
+    }
+
+    // Under the lock.
+    private void Publish()
+    {
+        var b = new byte[FrameEncoder.FrameBytes(_scene.World)];
+        FrameEncoder.EncodeFrame(_scene.World, _frame, _revision, (float)_stepMs, b);
+        _published = new EncodedFrame(b, _frame, _revision);
     }
 
     public byte[] Topology() { lock (_gate) return FrameEncoder.EncodeTopology(_scene.World, _revision); }

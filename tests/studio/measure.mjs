@@ -1,0 +1,60 @@
+// Measures how interactive the studio is per groom (simulation rate, frames the page receives and draws per second)
+// in headless Chromium, and takes the docs' screenshots. Writes a markdown table.
+// Run: node tests/studio/measure.mjs [--out docs/studio-figures.md] [--shots docs/img] [--seconds 6]
+import { writeFileSync, mkdirSync } from 'node:fs';
+import path from 'node:path';
+import os from 'node:os';
+import { missing, startServer, launchBrowser, until } from './harness.mjs';
+
+const arg = (name, fallback) => { const i = process.argv.indexOf(`--${name}`); return i > 0 ? process.argv[i + 1] : fallback; };
+const out = arg('out', 'studio-figures.md'), shots = arg('shots', null), seconds = +arg('seconds', 6);
+const grooms = (arg('grooms', 'small,medium,long,reference')).split(',');
+const why = missing();
+if (why) { console.error(`cannot measure: ${why}`); process.exit(1); }
+
+const rows = [];
+const browser = await launchBrowser();
+for (const groom of grooms) {
+  const server = startServer(['--groom', groom]);
+  const url = await server.url;
+  const page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
+  await page.goto(url);
+  await until(() => page.evaluate(() => window.studio?.ready && window.studio.framesReceived > 3), 'frames', 60_000);
+  await new Promise(r => setTimeout(r, 2000));   // past the JIT and the first uploads
+  const api = async () => (await fetch(new URL('api/state', url))).json();
+  const s0 = await api();
+  const p0 = await page.evaluate(() => ({ received: window.studio.framesReceived, drawn: window.studio.framesDrawn, t: performance.now() }));
+  await new Promise(r => setTimeout(r, seconds * 1000));
+  const s1 = await api();
+  const p1 = await page.evaluate(() => ({ received: window.studio.framesReceived, drawn: window.studio.framesDrawn, t: performance.now() }));
+  const wall = (p1.t - p0.t) / 1000;
+  rows.push({
+    groom, strands: s1.strands, particles: s1.particles, stepMs: s1.stepMs,
+    simHz: (s1.frame - s0.frame) / wall, received: (p1.received - p0.received) / wall, drawn: (p1.drawn - p0.drawn) / wall,
+    frameKb: (64 + 6 * s1.particles) / 1024,
+  });
+  console.log(JSON.stringify(rows[rows.length - 1]));
+  if (shots && groom === 'reference') {
+    mkdirSync(shots, { recursive: true });
+    await page.screenshot({ path: path.join(shots, 'studio.png') });
+  }
+  await page.close();
+  server.stop();
+  await new Promise(r => setTimeout(r, 500));
+}
+await browser.close();
+
+const table = [
+  `Measured by \`node tests/studio/measure.mjs\` on ${os.cpus().length} cores (${os.cpus()[0]?.model ?? 'unknown CPU'}), headless`,
+  'Chromium with software WebGL (SwiftShader: no GPU on this machine), server and browser on the same cores,',
+  `${seconds} s per groom after 2 s of warm-up. "Simulation" counts 1/60 s frames stepped per wall second (60 = real time);`,
+  '"received" and "drawn" are what the page fetched and rendered per second.',
+  '',
+  '| groom | strands | particles | step (ms) | simulation (frames/s) | frame size (KB) | received (frames/s) | drawn (frames/s) |',
+  '| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |',
+  ...rows.map(r => `| ${r.groom} | ${r.strands.toLocaleString('en')} | ${r.particles.toLocaleString('en')} | ${r.stepMs.toFixed(2)} | ` +
+    `${r.simHz.toFixed(0)} | ${r.frameKb.toFixed(0)} | ${r.received.toFixed(1)} | ${r.drawn.toFixed(1)} |`),
+  '',
+].join('\n');
+writeFileSync(out, table);
+console.log(table);
