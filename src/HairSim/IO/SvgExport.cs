@@ -30,8 +30,53 @@ public static class SvgExport
             float x = view == View.Front ? d.X : -d.Z;
             return new Vector2(pixels * 0.5f + x * scale, pixels * 0.35f - d.Y * scale);
         }
+        // Depth towards the viewer (front view: +Z, side view: +X), measured from the head's centre (the first drawn
+        // collider's): hair behind that plane is drawn before the head, so the head covers it where they overlap, and
+        // hair in front after it. Drawing all hair after the head put the hair at the back over the face.
+        Vector3 depthCentre = centre;
+        foreach (var c in scene.Colliders)
+            if (c.Kind is ColliderKind.Ellipsoid or ColliderKind.Sphere) { depthCentre = c.ToWorld(w.Head).Center; break; }
+        bool Behind(Vector3 p) => (view == View.Front ? p.Z - depthCentre.Z : p.X - depthCentre.X) < 0f;
+
         o.Write($"<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{pixels}\" height=\"{pixels}\" viewBox=\"0 0 {pixels} {pixels}\">\n");
         o.Write("<rect width=\"100%\" height=\"100%\" fill=\"#fbfaf7\"/>\n");
+        var sb = new System.Text.StringBuilder();
+        bool[] highlightMask = highlight.ToArray(); // a span cannot be captured by the local function below
+        void Hair(bool behind)
+        {
+            for (int pass = 0; pass < 2; pass++)
+            {
+                o.Write(pass == 0 ? "<g fill=\"none\" stroke=\"#5a3b24\" stroke-width=\"0.5\" stroke-opacity=\"0.5\">\n" : "<g fill=\"none\" stroke=\"#d2452b\" stroke-width=\"0.7\">\n");
+                for (int s = 0; s < w.StrandCount; s++)
+                {
+                    bool lit = s < highlightMask.Length && highlightMask[s];
+                    if (lit != (pass == 1) || (!lit && s % every != 0)) continue;
+                    // The strand's runs on this side of the plane; a run keeps the segment that crosses the plane, so
+                    // the two sides join without a gap.
+                    int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
+                    int k = 0;
+                    while (k < n)
+                    {
+                        if (Behind(w.GetPosition(first + k)) != behind) { k++; continue; }
+                        int from = Math.Max(0, k - 1), to = k;
+                        while (to + 1 < n && Behind(w.GetPosition(first + to + 1)) == behind) to++;
+                        if (to + 1 < n) to++;
+                        sb.Clear();
+                        sb.Append("<polyline points=\"");
+                        for (int i = from; i <= to; i++)
+                        {
+                            var p = Map(w.GetPosition(first + i));
+                            sb.Append(ci, $"{p.X:F1},{p.Y:F1} ");
+                        }
+                        sb.Append("\"/>\n");
+                        o.Write(sb.ToString());
+                        k = to + 1;
+                    }
+                }
+                o.Write("</g>\n");
+            }
+        }
+        Hair(behind: true);
         foreach (var c in scene.Colliders)
         {
             if (c.Kind != ColliderKind.Ellipsoid && c.Kind != ColliderKind.Sphere) continue;
@@ -40,26 +85,7 @@ public static class SvgExport
             float rx = (view == View.Front ? wc.Radii.X : wc.Radii.Z) * scale, ry = wc.Radii.Y * scale;
             o.Write(string.Create(ci, $"<ellipse cx=\"{m.X:F1}\" cy=\"{m.Y:F1}\" rx=\"{rx:F1}\" ry=\"{ry:F1}\" fill=\"#f1d9c4\" stroke=\"#c9a98e\"/>\n"));
         }
-        var sb = new System.Text.StringBuilder();
-        for (int pass = 0; pass < 2; pass++)
-        {
-            o.Write(pass == 0 ? "<g fill=\"none\" stroke=\"#5a3b24\" stroke-width=\"0.5\" stroke-opacity=\"0.5\">\n" : "<g fill=\"none\" stroke=\"#d2452b\" stroke-width=\"0.7\">\n");
-            for (int s = 0; s < w.StrandCount; s++)
-            {
-                bool lit = !highlight.IsEmpty && s < highlight.Length && highlight[s];
-                if (lit != (pass == 1) || (!lit && s % every != 0)) continue;
-                sb.Clear();
-                sb.Append("<polyline points=\"");
-                for (int k = 0; k < w.StrandParticleCount[s]; k++)
-                {
-                    var p = Map(w.GetPosition(w.StrandFirst[s] + k));
-                    sb.Append(ci, $"{p.X:F1},{p.Y:F1} ");
-                }
-                sb.Append("\"/>\n");
-                o.Write(sb.ToString());
-            }
-            o.Write("</g>\n");
-        }
+        Hair(behind: false);
         if (title != null)
             o.Write($"<text x=\"10\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\" fill=\"#333\">{System.Security.SecurityElement.Escape(title)}</text>\n");
         o.Write("</svg>\n");

@@ -18,7 +18,10 @@ public static class SvgPlot
     /// </summary>
     public static string Scatter(string title, string xLabel, string yLabel, IReadOnlyList<Point> points, IReadOnlyList<int> front, int highlight, int width = 960, int height = 600)
     {
-        const int left = 80, right = 200, top = 40, bottom = 60;
+        const int left = 80, right = 200, bottom = 60;
+        var titleLines = TitleLines(title, width);
+        int top = 40 + TitleExtra(titleLines);
+        height += TitleExtra(titleLines);
         double pw = width - left - right, ph = height - top - bottom;
         var ok = new List<int>();
         for (int i = 0; i < points.Count; i++)
@@ -35,7 +38,7 @@ public static class SvgPlot
         double Py(double y) => top + ph - (Math.Log10(y) - ly0) / (ly1 - ly0) * ph;
 
         var sb = new StringBuilder();
-        Header(sb, width, height, title);
+        Header(sb, width, height, titleLines);
         sb.Append(F($"<rect x='{left}' y='{top}' width='{pw}' height='{ph}' fill='none' stroke='#444'/>\n"));
         for (double e = lx0; e <= lx1; e++)
         {
@@ -102,10 +105,13 @@ public static class SvgPlot
         foreach (var c in columnLabels) longest = Math.Max(longest, c.Length);
         foreach (var c in cells) longest = Math.Max(longest, c.Text.Length);
         int cw = 12 + 7 * longest;
-        const int ch = 30, left = 150, top = 70;
-        int width = Math.Max(left + cols * cw + 20, left + 460), height = top + rows * ch + 30 + 20 * legend.Count;
+        const int ch = 30, left = 150;
+        int width = Math.Max(left + cols * cw + 20, left + 460);
+        var titleLines = TitleLines(title, width);
+        int top = 70 + TitleExtra(titleLines);
+        int height = top + rows * ch + 30 + 20 * legend.Count;
         var sb = new StringBuilder();
-        Header(sb, width, height, title);
+        Header(sb, width, height, titleLines);
         sb.Append(F($"<text x='{left + cols * cw / 2}' y='{top - 32}' text-anchor='middle'>{Esc(columnAxis)}</text>\n"));
         sb.Append(F($"<text x='10' y='{top - 10}'>{Esc(rowAxis)} ↓</text>\n"));
         for (int c = 0; c < cols; c++)
@@ -140,16 +146,18 @@ public static class SvgPlot
         if (values.Length != seriesLabels.Count) throw new ArgumentException("One row of values per series.", nameof(values));
         foreach (var row in values)
             if (row.Length != groupLabels.Count) throw new ArgumentException("One value per group in every series.", nameof(values));
-        const int left = 190, right = 60, top = 40, bar = 14, gap = 12;
+        const int left = 190, right = 60, bar = 14, gap = 12, width = 860;
+        var titleLines = TitleLines(title, width);
+        int top = 40 + TitleExtra(titleLines);
         int groupHeight = seriesLabels.Count * bar + gap;
-        int width = 860, height = top + groupLabels.Count * groupHeight + 50 + 18 * seriesLabels.Count;
+        int height = top + groupLabels.Count * groupHeight + 50 + 18 * seriesLabels.Count;
         double pw = width - left - right, max = 0;
         foreach (var row in values) foreach (double v in row) if (double.IsFinite(v)) max = Math.Max(max, v);
         max = max > 0 ? NiceCeiling(max) : 1;
         double Px(double v) => left + v / max * pw;
 
         var sb = new StringBuilder();
-        Header(sb, width, height, title);
+        Header(sb, width, height, titleLines);
         double axisY = top + groupLabels.Count * groupHeight;
         for (int k = 0; k <= 5; k++)
         {
@@ -187,11 +195,35 @@ public static class SvgPlot
         return 10 * p;
     }
 
-    private static void Header(StringBuilder sb, int width, int height, string title)
+    // The title is 15 px bold sans-serif, about 9 px a character at most; lines are 18 px apart.
+    private const double TitleCharWidth = 9;
+    private const int TitleLineHeight = 18;
+
+    /// <summary>The title broken at spaces into lines that fit the picture's width (a centred line wider than the picture is clipped at both ends).</summary>
+    internal static List<string> TitleLines(string title, int width)
+    {
+        int fit = Math.Max(10, (int)((width - 20) / TitleCharWidth));
+        var lines = new List<string>();
+        var line = new StringBuilder();
+        foreach (string word in title.Split(' ', StringSplitOptions.RemoveEmptyEntries))
+        {
+            if (line.Length > 0 && line.Length + 1 + word.Length > fit) { lines.Add(line.ToString()); line.Clear(); }
+            if (line.Length > 0) line.Append(' ');
+            line.Append(word);
+        }
+        lines.Add(line.ToString());
+        return lines;
+    }
+
+    /// <summary>How far a wrapped title pushes the chart down.</summary>
+    private static int TitleExtra(List<string> titleLines) => (titleLines.Count - 1) * TitleLineHeight;
+
+    private static void Header(StringBuilder sb, int width, int height, List<string> titleLines)
     {
         sb.Append(F($"<svg xmlns='http://www.w3.org/2000/svg' width='{width}' height='{height}' viewBox='0 0 {width} {height}' font-family='sans-serif' font-size='12'>\n"));
         sb.Append(F($"<rect width='{width}' height='{height}' fill='#fff'/>\n"));
-        sb.Append(F($"<text x='{width / 2}' y='20' text-anchor='middle' font-size='15' font-weight='bold'>{Esc(title)}</text>\n"));
+        for (int i = 0; i < titleLines.Count; i++)
+            sb.Append(F($"<text x='{width / 2}' y='{20 + i * TitleLineHeight}' text-anchor='middle' font-size='15' font-weight='bold'>{Esc(titleLines[i])}</text>\n"));
     }
 
     private static string Tick(double exponent) => exponent switch

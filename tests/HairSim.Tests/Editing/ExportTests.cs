@@ -116,10 +116,49 @@ public sealed class ExportTests : IDisposable
         var path = Path.Combine(_dir, "a.svg");
         SvgExport.Write(path, scene, SvgExport.View.Side, highlight: mask, title: "side <test>");
         var text = File.ReadAllText(path);
-        Assert.Equal(scene.World.StrandCount, Regex.Matches(text, "<polyline").Count);
+        // Strands are split where they pass behind the head's centre plane (drawn under the head) and in front of it,
+        // each piece keeping the crossing segment: every particle is drawn, in one piece or two.
+        var groups = Regex.Matches(text, "<g [^>]*stroke=\"(?<colour>#[0-9a-f]+)\"[^>]*>(?<body>.*?)</g>", RegexOptions.Singleline);
+        int Points(string colour) => groups.Where(g => g.Groups["colour"].Value == colour)
+            .Sum(g => Regex.Matches(g.Groups["body"].Value, @"-?\d+\.\d,-?\d+\.\d").Count);
+        int plain = 0;
+        for (int s = 0; s < scene.World.StrandCount; s++) if (!mask[s]) plain += scene.World.StrandParticleCount[s];
+        int lit = scene.World.StrandParticleCount[2] + scene.World.StrandParticleCount[7];
+        int polylines = Regex.Matches(text, "<polyline").Count;
+        Assert.InRange(polylines, scene.World.StrandCount, 2 * scene.World.StrandCount);
+        // Each extra piece repeats the two ends of its crossing segment.
+        Assert.Equal(plain + lit + 2 * (polylines - scene.World.StrandCount), Points("#5a3b24") + Points("#d2452b"));
+        Assert.InRange(Points("#d2452b"), lit, lit + 4);
         Assert.Contains("&lt;test&gt;", text);
-        var highlighted = text[text.IndexOf("#d2452b", StringComparison.Ordinal)..];
-        Assert.Equal(2, Regex.Matches(highlighted, "<polyline").Count);
+    }
+
+    [Fact]
+    public void SvgFrontViewDrawsHairBehindTheHeadUnderIt()
+    {
+        // Two strands hanging across the face in the picture: one 15 cm behind the head's centre, one 15 cm in front.
+        var world = new HairWorld(1, 2, 4);
+        for (int s = 0; s < 2; s++)
+        {
+            float z = s == 0 ? -0.15f : 0.15f;
+            world.SetStrand(s, [new(0.01f * s, 0.05f, z), new(0.01f * s, 0f, z), new(0.01f * s, -0.05f, z), new(0.01f * s, -0.1f, z)]);
+        }
+        world.ResetToRest();
+        var scene = new HairScene(world);
+        scene.AddCollider(Collider.Ellipsoid(Vector3.Zero, new Vector3(0.08f, 0.1f, 0.09f)));
+        var o = new StringWriter();
+        SvgExport.Write(o, scene, SvgExport.View.Front, extent: 0.4f);
+        string text = o.ToString();
+        int head = text.IndexOf("<ellipse", StringComparison.Ordinal);
+        Assert.True(head > 0);
+        var before = Regex.Matches(text[..head], "<polyline").Count;
+        var after = Regex.Matches(text[head..], "<polyline").Count;
+        // The strand behind is painted first, so the head covers it; the one in front is painted over the head.
+        Assert.Equal(1, before);
+        Assert.Equal(1, after);
+        // The one painted under the head is the one behind it: its x is the first strand's (0), the other's is 1 cm right.
+        string under = Regex.Match(text[..head], "<polyline points=\"(?<x>[0-9.]+),").Groups["x"].Value;
+        string over = Regex.Match(text[head..], "<polyline points=\"(?<x>[0-9.]+),").Groups["x"].Value;
+        Assert.True(float.Parse(under, CultureInfo.InvariantCulture) < float.Parse(over, CultureInfo.InvariantCulture));
     }
 
     [Fact]
