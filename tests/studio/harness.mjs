@@ -56,3 +56,48 @@ export async function until(fn, what, timeoutMs = 20_000) {
     await new Promise(r => setTimeout(r, 100));
   }
 }
+
+/** Real-mouse helpers on a studio page: page coordinates of world points (through the page's camera) and drags. */
+export function pageHelpers(page) {
+  async function screen(point) {
+    const [x, y] = await page.evaluate(p => window.studio.view.project(p), point);
+    const box = await page.locator('#view').boundingBox();
+    return [box.x + x, box.y + y];
+  }
+  async function drag(points) {
+    await page.mouse.move(...points[0]);
+    await page.mouse.down();
+    for (const p of points.slice(1)) await page.mouse.move(...p, { steps: 4 });
+    await page.mouse.up();
+  }
+  /** The strokes the tests and the docs use: a cut below the chin, a fringe selected by its roots, fitted slicked back. */
+  async function cutBelowChin(y = -0.12) {
+    await page.click('[data-tool=cut]');
+    const left = await screen([-0.3, y, 0.1]), right = await screen([0.3, y, 0.1]);
+    await drag([left, [(left[0] + right[0]) / 2, left[1]], right]);
+  }
+  /** Bangs: a short stroke across the forehead, in front of the face only, ending the hair that hangs over the eyes. */
+  async function cutBangs(y = 0.025) {
+    await page.click('[data-tool=cut]');
+    const left = await screen([-0.065, y, 0.12]), right = await screen([0.065, y, 0.12]);
+    await drag([left, [(left[0] + right[0]) / 2, left[1]], right]);
+  }
+  async function selectFringe() {
+    await page.click('[data-tool=select]');
+    const a = await screen([-0.035, 0.07, 0.08]), b = await screen([0.035, 0.05, 0.085]);   // a patch at the hairline
+    await drag([a, [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], b]);
+  }
+  /** From the side, as an artist would: a stroke from the forehead up and back over the crown (slicked back). */
+  async function fitSlickedBack() {
+    await page.click('[data-view=side]');
+    await page.click('[data-tool=fit]');
+    const stroke = [];
+    for (let i = 0; i <= 16; i++) {
+      const a = (50 - 140 * i / 16) * Math.PI / 180;   // 50° in front of the crown to 90° behind it
+      stroke.push(await screen([0, 0.108 * Math.cos(a), 0.103 * Math.sin(a)]));
+    }
+    await drag(stroke);
+    await page.click('[data-view=front]');
+  }
+  return { screen, drag, cutBelowChin, cutBangs, selectFringe, fitSlickedBack };
+}

@@ -4,7 +4,7 @@
 import { writeFileSync, mkdirSync } from 'node:fs';
 import path from 'node:path';
 import os from 'node:os';
-import { missing, startServer, launchBrowser, until } from './harness.mjs';
+import { missing, startServer, launchBrowser, until, pageHelpers } from './harness.mjs';
 
 const arg = (name, fallback) => { const i = process.argv.indexOf(`--${name}`); return i > 0 ? process.argv[i + 1] : fallback; };
 const out = arg('out', 'studio-figures.md'), shots = arg('shots', null), seconds = +arg('seconds', 6);
@@ -34,9 +34,29 @@ for (const groom of grooms) {
     frameKb: (64 + 6 * s1.particles) / 1024,
   });
   console.log(JSON.stringify(rows[rows.length - 1]));
-  if (shots && groom === 'reference') {
+  if (shots && groom === (process.env.SHOT_GROOM ?? 'reference')) {
     mkdirSync(shots, { recursive: true });
     await page.screenshot({ path: path.join(shots, 'studio.png') });
+    // The same groom styled through the page as a user would: a cut below the chin, bangs cut above the eyes and a patch at the hairline fitted slicked back, then a side view.
+    const ui = pageHelpers(page);
+    await ui.cutBelowChin();
+    await until(async () => (await api()).cutStrands > 0, 'the cut', 60_000);
+    await ui.cutBangs();
+    await until(async () => (await api()).undoCount === 2, 'the bangs', 60_000);
+    await ui.selectFringe();
+    await until(async () => (await api()).selection.length > 0, 'the selection', 60_000);
+    await ui.fitSlickedBack();
+    await until(async () => (await api()).undoCount === 3, 'the fit', 60_000);
+    await page.click('[data-tool=view]');
+    await page.click('#clear-selection');
+    // The overlay is empty once a stroke is sent, but headless Chromium with software WebGL was seen compositing the
+    // last stroke into later screenshots of the reference groom: hide it for the pictures.
+    await page.evaluate(() => { window.studio.drawOverlay(); document.getElementById('overlay').style.visibility = 'hidden'; });
+    await new Promise(r => setTimeout(r, 6000));
+    await page.screenshot({ path: path.join(shots, 'studio-styled.png') });
+    await page.click('[data-view=side]');
+    await new Promise(r => setTimeout(r, 6000));
+    await page.screenshot({ path: path.join(shots, 'studio-styled-side.png') });
   }
   await page.close();
   server.stop();

@@ -4,31 +4,16 @@ import { describe, it, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
-import { missing, startServer, launchBrowser, until } from './harness.mjs';
+import { missing, startServer, launchBrowser, until, pageHelpers } from './harness.mjs';
 
 const skip = missing();
 if (skip) console.log(`studio browser tests: SKIPPED: ${skip}`);
 const artifacts = process.env.STUDIO_ARTIFACTS ?? path.join(process.cwd(), 'artifacts');
 
 describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
-  let server, browser, page, url;
+  let server, browser, page, url, ui;
   const api = async p => (await fetch(new URL(`api/${p}`, url))).json();
   const state = () => api('state');
-
-  /** Page coordinates of a world point, through the page's own camera. */
-  async function screen(point) {
-    const [x, y] = await page.evaluate(p => window.studio.view.project(p), point);
-    const box = await page.locator('#view').boundingBox();
-    return [box.x + x, box.y + y];
-  }
-
-  /** A real mouse drag through page points. */
-  async function drag(points) {
-    await page.mouse.move(...points[0]);
-    await page.mouse.down();
-    for (const p of points.slice(1)) await page.mouse.move(...p, { steps: 4 });
-    await page.mouse.up();
-  }
 
   async function download(selector) {
     const [file] = await Promise.all([page.waitForEvent('download'), page.click(selector)]);
@@ -41,6 +26,7 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
     url = await server.url;
     browser = await launchBrowser();
     page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
+    ui = pageHelpers(page);
     page.on('pageerror', e => console.log(`page error: ${e.message}`));
     await page.goto(url);
     await until(() => page.evaluate(() => window.studio?.ready && window.studio.framesReceived > 10), 'the first frames');
@@ -65,10 +51,7 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
 
   it('cuts the strands a mouse stroke crosses, at the stroke', async () => {
     const before = await state();
-    await page.click('[data-tool=cut]');
-    const y = -0.12;   // below the chin: the hair hanging in front of and beside the face
-    const left = await screen([-0.3, y, 0.1]), right = await screen([0.3, y, 0.1]);
-    await drag([left, [(left[0] + right[0]) / 2, left[1]], right]);
+    await ui.cutBelowChin();
     const after = await until(async () => { const s = await state(); return s.cutStrands > 0 && s; }, 'the cut');
     assert.ok(after.cutStrands > 20, `${after.cutStrands} strands cut`);
     assert.ok(after.liveParticles < before.liveParticles, 'particles past the cut are gone');
@@ -82,20 +65,12 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
   it('selects the fringe with a rectangle and fits it to a stroke', async () => {
     const before = await state();
     const savedBefore = Buffer.from(await (await fetch(new URL('api/save', url))).arrayBuffer());
-    await page.click('[data-tool=select]');
-    const a = await screen([-0.06, 0.1, 0.08]), b = await screen([0.06, 0.02, 0.1]);
-    await drag([a, [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], b]);
+    await ui.selectFringe();
     const selected = await until(async () => { const s = await state(); return s.selection.length > 0 && s; }, 'a selection');
     assert.ok(selected.selection.length >= 5, `${selected.selection.length} strands selected`);
     await until(() => page.evaluate(() => window.studio.view.selection.size > 0), 'the selection highlighted');
 
-    await page.click('[data-tool=fit]');
-    const stroke = [];
-    for (let i = 0; i <= 12; i++) {
-      const t = i / 12;   // from the top of the head forwards and up: a quiff
-      stroke.push(await screen([0, 0.1 + 0.05 * Math.sin(Math.PI * t), 0.05 + 0.12 * t]));
-    }
-    await drag(stroke);
+    await ui.fitSlickedBack();
     const after = await until(async () => { const s = await state(); return s.undoCount === before.undoCount + 1 && s; }, 'the fit');
     assert.equal(after.message.startsWith('Fitted'), true, after.message);
     const savedAfter = Buffer.from(await (await fetch(new URL('api/save', url))).arrayBuffer());

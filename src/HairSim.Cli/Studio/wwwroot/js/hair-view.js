@@ -55,7 +55,8 @@ export class HairView {
   constructor(canvas) {
     this.canvas = canvas;
     // preserveDrawingBuffer: the page (and its browser test) can read back what is on screen.
-    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    const params = new URLSearchParams(location.search);
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: params.get('aa') !== '0', preserveDrawingBuffer: true });   // ?aa=0: no MSAA (software WebGL)
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     this.renderer.setClearColor(0x2a2d33);
     this.scene = new THREE.Scene();
@@ -94,7 +95,10 @@ export class HairView {
     this.scene.add(this.lines);
 
     this.topology = null;
+    this.topologyBuffer = null;
     this.particleCount = 0;
+    // Draw one strand in this many (a preview density for slow machines); the simulation keeps them all.
+    this.strandStride = Math.max(1, +(params.get('show') ?? 1) | 0);
     this.selection = new Set();
     this.resize();
     new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
@@ -106,6 +110,16 @@ export class HairView {
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+  }
+
+  /** Puts the camera in front of, beside, behind or above the head, at the current distance. */
+  setView(name) {
+    const d = this.camera.position.distanceTo(this.controls.target);
+    const dir = { front: [0, 0.1, 1], side: [-1, 0.1, 0], back: [0, 0.1, -1], top: [0, 1, 0.001] }[name];
+    if (!dir) return;
+    const v = new THREE.Vector3(...dir).normalize().multiplyScalar(d);
+    this.camera.position.copy(this.controls.target).add(v);
+    this.controls.update();
   }
 
   /** The camera as the server's StrokeCamera reads it (see CameraRequest). */
@@ -128,6 +142,7 @@ export class HairView {
 
   /** Topology (binary "HST1"): which particles make which strand, and how many are live. */
   setTopology(buffer) {
+    this.topologyBuffer = buffer;
     const dv = new DataView(buffer);
     if (dv.getUint32(0, true) !== 0x31545348) throw new Error('not a topology message');
     const revision = dv.getInt32(4, true), strands = dv.getInt32(8, true), particles = dv.getInt32(12, true);
@@ -136,7 +151,7 @@ export class HairView {
     for (let s = 0; s < strands; s++) {
       const o = 16 + 16 * s;
       first[s] = dv.getInt32(o, true); live[s] = dv.getInt32(o + 4, true); capacity[s] = dv.getInt32(o + 8, true);
-      segments += Math.max(0, live[s] - 1);
+      if (s % this.strandStride === 0) segments += Math.max(0, live[s] - 1);
     }
     const index = new Uint32Array(2 * segments);
     const along = new Float32Array(particles), seed = new Float32Array(particles);
@@ -147,6 +162,7 @@ export class HairView {
         along[first[s] + k] = k / Math.max(1, capacity[s] - 1);
         seed[first[s] + k] = r;
       }
+      if (s % this.strandStride !== 0) continue;
       for (let k = 0; k + 1 < live[s]; k++) { index[n++] = first[s] + k; index[n++] = first[s] + k + 1; }
     }
     if (particles !== this.particleCount) {
@@ -166,6 +182,12 @@ export class HairView {
     this.geometry.setIndex(new THREE.BufferAttribute(index, 1));
     this.topology = { revision, strands, particles, first, live, capacity, segments };
     this.applySelection();
+  }
+
+  /** Draw every strand (1) or one in 2, 4, 8 … */
+  setStrandStride(stride) {
+    this.strandStride = Math.max(1, stride | 0);
+    if (this.topologyBuffer) this.setTopology(this.topologyBuffer);
   }
 
   /** A frame (binary "HSF1"): quantised positions and the head pose. Returns its header. */

@@ -124,8 +124,9 @@ class Studio {
     const w = Math.round(o.clientWidth * dpr), h = Math.round(o.clientHeight * dpr);
     if (o.width !== w || o.height !== h) { o.width = w; o.height = h; }
     const g = o.getContext('2d');
+    // reset() rather than clearRect: Chromium with software WebGL was seen keeping parts of a stroke after clearRect.
+    if (g.reset) g.reset(); else { g.setTransform(1, 0, 0, 1, 0, 0); g.clearRect(0, 0, o.width, o.height); }
     g.setTransform(dpr, 0, 0, dpr, 0, 0);
-    g.clearRect(0, 0, o.clientWidth, o.clientHeight);
     this.tool.draw(g);
   }
 
@@ -138,6 +139,8 @@ class Studio {
       if (ctrl) return;
       const tools = { 1: 'view', 2: 'cut', 3: 'select', 4: 'fit', 5: 'head' };
       if (tools[k]) { this.setTool(tools[k]); return; }
+      const views = { F1: 'front', F2: 'side', F3: 'back', F4: 'top' };
+      if (views[k]) { e.preventDefault(); this.view.setView(views[k]); return; }
       const step = 0.01, turn = 5 * Math.PI / 180, h = this.head;
       const moves = {
         ArrowLeft: () => { h.position[0] -= step; }, ArrowRight: () => { h.position[0] += step; },
@@ -153,6 +156,7 @@ class Studio {
 
   bindPanel() {
     for (const b of document.querySelectorAll('[data-tool]')) b.addEventListener('click', () => this.setTool(b.dataset.tool));
+    for (const b of document.querySelectorAll('[data-view]')) b.addEventListener('click', () => this.view.setView(b.dataset.view));
     for (const r of document.querySelectorAll('input[name=shape]')) r.addEventListener('change', () => { this.options.selectShape = r.value; });
     $('roots-only').addEventListener('change', e => { this.options.rootsOnly = e.target.checked; });
     $('visible-only').addEventListener('change', e => { this.options.visibleOnly = e.target.checked; });
@@ -189,6 +193,8 @@ class Studio {
       });
     }
     $('path').addEventListener('change', e => this.run(() => command('settings', { path: e.target.value })));
+    $('show').value = String(this.view.strandStride);
+    $('show').addEventListener('change', e => this.view.setStrandStride(+e.target.value));
     $('density').addEventListener('input', e => { $('density-value').textContent = e.target.value; });
     $('grow').addEventListener('click', async () => {
       await this.run(() => command('groom', { name: $('groom').value, strandsPerSheet: +$('density').value }));

@@ -17,6 +17,7 @@ class Tool {
     this.move(p);
     const points = this.points;
     this.points = null;
+    this.studio.drawOverlay();   // the stroke disappears as soon as it is sent, however slowly the view redraws
     await this.finish(points);
   }
   cancel() { this.points = null; }
