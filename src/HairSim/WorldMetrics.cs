@@ -10,12 +10,13 @@ public readonly record struct WorldMetrics(
     int ParticlesInside,
     int NonFinite)
 {
-    /// <summary>Measures against the scene's colliders placed at the world's current head pose.</summary>
+    /// <summary>Measures against the scene's colliders (and its mesh collider's distance field) placed at the world's current head pose.</summary>
     public static WorldMetrics Measure(HairScene scene)
     {
         var w = scene.World;
         var colliders = new Collider[scene.Colliders.Count];
         for (int c = 0; c < colliders.Length; c++) colliders[c] = scene.Colliders[c].ToWorld(w.Head);
+        var mesh = scene.GetComponent<Meshes.MeshCollider>();
         double length = 0, rest = 0, maxStretch = 0, maxPen = 0;
         int inside = 0;
         for (int s = 0; s < w.StrandCount; s++)
@@ -33,6 +34,11 @@ public readonly record struct WorldMetrics(
                     if (w.RestLength[i] > 0) maxStretch = Math.Max(maxStretch, Math.Abs(l / w.RestLength[i] - 1));
                 }
                 if (w.InvMass[i] == 0f) continue;
+                if (mesh != null)
+                {
+                    float dm = -mesh.Field.Distance(w.Head.InverseTransformPoint(p));
+                    if (dm > 1e-6f + 5e-7f * p.Length()) { inside++; maxPen = Math.Max(maxPen, dm); }
+                }
                 foreach (var c in colliders)
                 {
                     // "Inside" beyond float resolution at this distance from the origin (a few ulps).

@@ -2,13 +2,13 @@ namespace HairSim;
 
 /// <summary>
 /// Builds a scene's pipeline from registered system factories, keeping only the systems whose data the
-/// scene has. Order: head follow, shape match, integrate, bend, length, collide, segment collide (substeps), then interpolation.
+/// scene has. Order: head follow, shape match, integrate, bend, length, collide, mesh collide, segment collide (substeps), then interpolation.
 /// Other libraries (editing tools, wind, …) add their factories with <see cref="Add"/>.
 /// </summary>
 public sealed class PipelineBuilder
 {
     public const int OrderHeadFollow = 100, OrderShapeMatch = 200, OrderIntegrate = 300, OrderBend = 350, OrderLength = 400,
-        OrderCollide = 500, OrderSegmentCollide = 550, OrderInterpolate = 1000;
+        OrderCollide = 500, OrderMeshCollide = 520, OrderSegmentCollide = 550, OrderInterpolate = 1000;
 
     private readonly List<SystemFactory> _factories = new();
 
@@ -56,6 +56,8 @@ public sealed class PipelineBuilder
             s => new LengthSystem(s.World.MaxStrandCapacity)));
         b.Add(new SystemFactory(CollideSystem.SystemName, SystemPhase.Substep, OrderCollide,
             s => s.Colliders.Count > 0, _ => new CollideSystem()));
+        b.Add(new SystemFactory(Meshes.MeshCollideSystem.SystemName, SystemPhase.Substep, OrderMeshCollide,
+            s => s.HasComponent<Meshes.MeshCollider>(), _ => new Meshes.MeshCollideSystem()));
         b.Add(new SystemFactory(SegmentCollideSystem.SystemName, SystemPhase.Substep, OrderSegmentCollide,
             SegmentCollideSystem.Needed, _ => new SegmentCollideSystem()));
         b.Add(new SystemFactory(InterpolateSystem.SystemName, SystemPhase.FrameEnd, OrderInterpolate,
