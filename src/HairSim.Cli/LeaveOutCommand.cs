@@ -147,7 +147,7 @@ public static class LeaveOutCommand
         sb.Append("""
             - Where the kept system has nothing to do it returns at once (the bend sweep under another bend model, the
               length pass when the bend sweep keeps lengths itself or with `LengthMode.None`, collide with no collider),
-              so leaving it out saves only a pass over nothing, within this machine's noise; what such a scene saves is
+              so leaving it out saves only a pass over nothing, within the run-to-run noise of the machine; what such a scene saves is
               the work itself, in the column against the game character. Where the kept system would still work for
               nothing (render interpolation that nobody draws, the source's shape matching at α = 0), leaving it out
               saves that work outright.

@@ -216,7 +216,7 @@ public static class ReportCommand
         var d = rows[def];
         md.Append("## Findings\n\n");
         if (one != null && four != null && sixteen != null)
-            md.Append(F($"- **The source's stretch.** Müller α = 1 without a length pass, hanging strand at 60 Hz: it settles at {1 + one.Hanging.LengthError:0.00}× its rest length with one substep, {1 + four.Hanging.LengthError:0.000}× with 4 and {1 + sixteen.Hanging.LengthError:0.000}× with 16 (the issue's independent measurement: 2.3×, 1.08×, 1.005×; same trend, our goal averaging and settling run differ). Substeps alone need 16 to come near 0.5 % and still stretch {Pct(sixteen.Shake.PeakStretch)} while the head shakes.\n"));
+            md.Append(F($"- **The source's stretch.** Müller α = 1 without a length pass, hanging strand at 60 Hz: it settles at {1 + one.Hanging.LengthError:0.00}× its rest length with one substep, {1 + four.Hanging.LengthError:0.000}× with 4 and {1 + sixteen.Hanging.LengthError:0.000}× with 16 (an independent measurement of the source's scheme: 2.3×, 1.08×, 1.005×; same trend, our goal averaging and settling run differ). Substeps alone need 16 to come near 0.5 % and still stretch {Pct(sixteen.Shake.PeakStretch)} while the head shakes.\n"));
         var pbd8 = rows.Find(r => r.Config.Bend == BendModel.SourceTriples && r.Config.Mode == ShapeMatchMode.Muller && r.Config.Alpha == 1f && r.Config.Substeps == 8 && r.Config.Length == LengthMode.Pbd && r.Config.LengthIterations == 4);
         var ftl16 = Find(1f, 16, LengthMode.FollowTheLeader);
         if (four != null)

@@ -30,7 +30,7 @@ public enum BendModel
     /// Straight, curled and fitted rest shapes hold against gravity and come back after the head moves.
     /// </summary>
     RestShape,
-    /// <summary>The source's triple shape matching (SPEC A.3) with <see cref="SimulationSettings.Alpha"/> and <see cref="SimulationSettings.Mode"/>, exactly as it describes it.</summary>
+    /// <summary>The source's triple shape matching (the 2009 Hair Sheet report's stretch and bend model) with <see cref="SimulationSettings.Alpha"/> and <see cref="SimulationSettings.Mode"/>, exactly as it describes it.</summary>
     SourceTriples,
     /// <summary>No bending at all: hair hangs and swings like a chain.</summary>
     Limp,

@@ -42,37 +42,52 @@ public sealed class MeshCollideSystem : IHairSystem
         if (mc == null) return;
         var w = scene.World;
         var head = ctx.HeadAt(substep);
+        // Head space once per call: local = Rᵀ(p − t).
+        var toLocal = Matrix4x4.CreateFromQuaternion(Quaternion.Conjugate(head.Rotation));
+        var toWorld = Matrix4x4.CreateFromQuaternion(head.Rotation);
+        var t = head.Position;
         var field = mc.Field;
-        float margin = mc.Margin, slide = ctx.Settings.ContactSlide;
+        float margin = mc.Margin, slide = ctx.Settings.ContactSlide, slack = 0.1f * field.CellSize + 1e-5f;
+        float[] x = w.PosX, y = w.PosY, z = w.PosZ;
         for (int s = begin; s < end; s++)
         {
             int first = w.StrandFirst[s], last = first + w.StrandParticleCount[s];
+            float previous = float.MaxValue;
             for (int i = first; i < last; i++)
             {
-                if (w.InvMass[i] != 0f) Push(w, head, field, margin, slide, i, head.InverseTransformPoint(w.GetPosition(i)));
-                if (i == first) continue;
-                // The segment's midpoint: both ends move out by the midpoint's depth.
-                var mid = head.InverseTransformPoint(0.5f * (w.GetPosition(i - 1) + w.GetPosition(i)));
-                float dm = field.Sample(mid, out var gm);
-                if (dm >= margin || gm.LengthSquared() < 1e-12f) continue;
-                var push = head.TransformDirection(Vector3.Normalize(gm)) * (margin - dm);
-                for (int j = i - 1; j <= i; j++)
+                var local = Vector3.TransformNormal(new Vector3(x[i], y[i], z[i]) - t, toLocal);
+                float d = field.Distance(local);
+                if (d < margin && w.InvMass[i] != 0f)
                 {
-                    if (w.InvMass[j] == 0f) continue;
-                    w.PutPosition(j, w.GetPosition(j) + push);
-                    RemoveInward(w, j, Vector3.Normalize(push), slide);
+                    field.Sample(local, out var g);
+                    if (g.LengthSquared() > 1e-12f)
+                    {
+                        var n = Vector3.Normalize(g);
+                        w.PutPosition(i, t + Vector3.TransformNormal(local + n * (margin - d), toWorld));
+                        RemoveInward(w, i, Vector3.TransformNormal(n, toWorld), slide);
+                        d = margin;
+                    }
                 }
+                // The segment's midpoint can only be inside if an end is within half a segment of the surface (the
+                // field is 1-Lipschitz up to trilinear slack): most segments skip the second sample.
+                if (i > first && MathF.Max(previous, d) - 0.5f * w.RestLength[i] < margin + slack)
+                {
+                    var mid = Vector3.TransformNormal(0.5f * (w.GetPosition(i - 1) + w.GetPosition(i)) - t, toLocal);
+                    float dm = field.Sample(mid, out var gm);
+                    if (dm < margin && gm.LengthSquared() > 1e-12f)
+                    {
+                        var push = Vector3.TransformNormal(Vector3.Normalize(gm), toWorld);
+                        for (int j = i - 1; j <= i; j++)
+                        {
+                            if (w.InvMass[j] == 0f) continue;
+                            w.PutPosition(j, w.GetPosition(j) + push * (margin - dm));
+                            RemoveInward(w, j, push, slide);
+                        }
+                    }
+                }
+                previous = d;
             }
         }
-    }
-
-    private static void Push(HairWorld w, in RigidTransform head, SignedDistanceField field, float margin, float slide, int i, Vector3 local)
-    {
-        float d = field.Sample(local, out var g);
-        if (d >= margin || g.LengthSquared() < 1e-12f) return;
-        var n = Vector3.Normalize(g);
-        w.PutPosition(i, head.TransformPoint(local + n * (margin - d)));
-        RemoveInward(w, i, head.TransformDirection(n), slide);
     }
 
     private static void RemoveInward(HairWorld w, int i, Vector3 normal, float slide)

@@ -83,9 +83,11 @@ public sealed class SignedDistanceField
         Parallel.For(0, slabs, k =>
         {
             int zs = (int)(((long)k * Nz + slabs - 1) / slabs), ze = (int)(((long)(k + 1) * Nz + slabs - 1) / slabs) - 1;
+            float band2 = band * band;
             foreach (int t in bySlab[k])
             {
                 var (a, b, c) = mesh.Triangle(t);
+                var normal = mesh.FaceNormal(t);
                 var lo = Vector3.Min(a, Vector3.Min(b, c)) - new Vector3(band) - origin;
                 var hi = Vector3.Max(a, Vector3.Max(b, c)) + new Vector3(band) - origin;
                 int x0 = Math.Max(0, (int)MathF.Floor(lo.X / cellSize)), x1 = Math.Min(Nx - 1, (int)MathF.Ceiling(hi.X / cellSize));
@@ -96,10 +98,15 @@ public sealed class SignedDistanceField
                         for (int x = x0; x <= x1; x++)
                         {
                             var p = origin + new Vector3(x, y, z) * cellSize;
+                            // Most of the grown box is farther than the band from the triangle's plane: skip those cells
+                            // before the closest-point test (a degenerate triangle has no plane and is tested in full).
+                            if (MathF.Abs(Vector3.Dot(p - a, normal)) > band) continue;
                             var q = ClosestOnTriangle(p, a, b, c, out var feature);
-                            float dist = Vector3.Distance(p, q);
+                            float dist2 = Vector3.DistanceSquared(p, q);
                             int i = x + Nx * (y + Ny * z);
-                            if (dist >= d[i] || dist > band) continue;
+                            if (dist2 > band2) continue;
+                            float dist = MathF.Sqrt(dist2);
+                            if (dist >= d[i]) continue;
                             d[i] = dist;
                             sign[i] = (sbyte)(Vector3.Dot(p - q, pseudo.Normal(t, feature)) < 0f ? -1 : 1);
                         }
@@ -187,8 +194,19 @@ public sealed class SignedDistanceField
     }
 
 
-    /// <summary>Signed distance at p (metres; negative inside), trilinear between cells; ±band outside the grid's reach.</summary>
-    public float Distance(Vector3 p) => Sample(p, out _);
+    /// <summary>Signed distance at p (metres; negative inside), trilinear between cells; +band outside the grid.</summary>
+    public float Distance(Vector3 p)
+    {
+        var g = (p - Origin) / CellSize;
+        if (!(g.X >= 0f && g.Y >= 0f && g.Z >= 0f && g.X < Nx - 1 && g.Y < Ny - 1 && g.Z < Nz - 1)) return Band;
+        int x = (int)g.X, y = (int)g.Y, z = (int)g.Z;
+        float fx = g.X - x, fy = g.Y - y, fz = g.Z - z;
+        int i = x + Nx * (y + Ny * z), sy = Nx, sz = Nx * Ny;
+        float x00 = _d[i] + fx * (_d[i + 1] - _d[i]), x10 = _d[i + sy] + fx * (_d[i + sy + 1] - _d[i + sy]);
+        float x01 = _d[i + sz] + fx * (_d[i + sz + 1] - _d[i + sz]), x11 = _d[i + sz + sy] + fx * (_d[i + sz + sy + 1] - _d[i + sz + sy]);
+        float y0 = x00 + fy * (x10 - x00), y1 = x01 + fy * (x11 - x01);
+        return y0 + fz * (y1 - y0);
+    }
 
     /// <summary>Signed distance and its gradient (not normalised) at p.</summary>
     public float Sample(Vector3 p, out Vector3 gradient)
@@ -246,7 +264,8 @@ public sealed class SignedDistanceField
         private readonly TriangleMesh _mesh;
         private readonly int[] _weld;
         private readonly Vector3[] _vertex;
-        private readonly Dictionary<long, Vector3> _edge = new();
+        // Keyed by the (low, high) vertex pair: a long key would hash as low ^ high, which collides for most edges of a mesh.
+        private readonly Dictionary<(int, int), Vector3> _edge = new();
 
         public PseudoNormals(TriangleMesh mesh)
         {
@@ -267,13 +286,13 @@ public sealed class SignedDistanceField
                     float l = e1.Length() * e2.Length();
                     float angle = l > 0f ? MathF.Acos(Math.Clamp(Vector3.Dot(e1, e2) / l, -1f, 1f)) : 0f;
                     _vertex[_weld[v]] += angle * n;
-                    long key = EdgeKey(_weld[v], _weld[v1]);
+                    var key = EdgeKey(_weld[v], _weld[v1]);
                     _edge[key] = _edge.TryGetValue(key, out var s) ? s + n : n;
                 }
             }
         }
 
-        private static long EdgeKey(int a, int b) => a < b ? ((long)a << 32) | (uint)b : ((long)b << 32) | (uint)a;
+        private static (int, int) EdgeKey(int a, int b) => a < b ? (a, b) : (b, a);
 
         public Vector3 Normal(int t, Feature f)
         {

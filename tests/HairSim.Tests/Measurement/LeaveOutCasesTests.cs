@@ -11,7 +11,7 @@ public class LeaveOutCasesTests
     private static readonly string[] Core =
     [
         HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, BendSystem.SystemName,
-        LengthSystem.SystemName, CollideSystem.SystemName, SegmentCollideSystem.SystemName, InterpolateSystem.SystemName,
+        LengthSystem.SystemName, CollideSystem.SystemName, HairSim.Meshes.MeshCollideSystem.SystemName, SegmentCollideSystem.SystemName, InterpolateSystem.SystemName,
     ];
 
     /// <summary>What a game character's hair needs with the default settings: no triples, lengths kept by the bend sweep.</summary>
