@@ -8,13 +8,13 @@ namespace HairSim.Cli;
 /// <summary>The main job: build the reference scene, simulate it headless, report timings and error figures.</summary>
 public static class RunCommand
 {
-    public const string Help = "simulate the reference scene (435 × 40 × 16) headless: --seconds 10 --hz 60 --substeps N --path fast|reference --sheets --strands --particles --shake --head mesh.glb|.gltf|.obj (grow on and collide with a mesh) --sdf-cell 0.0025";
+    public const string Help = "simulate the reference scene (435 × 40 × 16) headless: --seconds 10 --hz 60 --substeps N --path fast|reference --sheets --strands --particles --shake --head mesh.glb|.gltf|.obj|procedural (grow on and collide with a mesh; procedural = the project's own head) --sdf-cell 0.0025";
 
     /// <summary>Hair grown on the file's mesh (all of it is scalp unless its vertex colours mark one in red), colliding with its distance field.</summary>
     private static HairScene GrowOnMesh(string path, float cell, GroomSettings groom, SimulationSettings settings)
     {
         var load = Stopwatch.StartNew();
-        var mesh = HairSim.Meshes.MeshFile.Load(path);
+        var mesh = path == "procedural" ? HairSim.Meshes.ProceduralHead.Create() : HairSim.Meshes.MeshFile.Load(path);
         load.Stop();
         var field = HairSim.Meshes.SignedDistanceField.Bake(mesh, cell);
         var grow = Stopwatch.StartNew();

@@ -134,6 +134,17 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
     await until(async () => (await state()).settings.path === 'Reference', 'the reference path');
   });
 
+  it('grows a groom on the mesh head and draws the mesh', async () => {
+    await page.selectOption('#groom', 'mesh head');
+    await page.locator('#density').fill('4');
+    await page.click('#grow');
+    const s = await until(async () => { const t = await state(); return t.groom === 'mesh head' && t.hasMesh && t; }, 'the mesh groom', 60_000);
+    assert.equal(s.strands, 1200);
+    await until(() => page.evaluate(() => window.studio.view.meshGroup.children.length === 1), 'the head mesh drawn');
+    await until(() => page.evaluate(r => window.studio.view.topology?.strands === 1200, s.revision), 'the new strands drawn');
+    await page.screenshot({ path: path.join(artifacts, 'studio-mesh-head.png') });
+  });
+
   it('moves and shakes the head from the keyboard', async () => {
     await page.click('[data-tool=view]');
     await page.keyboard.press('ArrowRight');

@@ -106,6 +106,23 @@ public static class FrameEncoder
     }
 
     /// <summary>
+    /// Mesh layout (head space, for drawing the head): magic "HSM1", int32 vertex count, int32 triangle count, then
+    /// float32 x, y, z per vertex and int32 indices, three per triangle.
+    /// </summary>
+    public static byte[] EncodeMesh(HairSim.Meshes.TriangleMesh mesh)
+    {
+        int nv = mesh.Positions.Length, ni = mesh.Indices.Length;
+        var b = new byte[12 + 12 * nv + 4 * ni];
+        "HSM1"u8.CopyTo(b);
+        BinaryPrimitives.WriteInt32LittleEndian(b.AsSpan(4), nv);
+        BinaryPrimitives.WriteInt32LittleEndian(b.AsSpan(8), ni / 3);
+        int o = 12;
+        foreach (var p in mesh.Positions) { WriteVec(b.AsSpan(o), p); o += 12; }
+        foreach (int i in mesh.Indices) { BinaryPrimitives.WriteInt32LittleEndian(b.AsSpan(o), i); o += 4; }
+        return b;
+    }
+
+    /// <summary>
     /// Topology layout: magic "HST1", int32 revision, int32 strand count, int32 particle count; then per strand
     /// int32 first particle, int32 live particle count, int32 capacity, int32 sheet.
     /// </summary>

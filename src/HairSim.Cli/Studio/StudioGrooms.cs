@@ -13,7 +13,26 @@ public static class StudioGrooms
         ("long", "6,960 strands × 24 particles, 45 cm", () => new GroomSettings { StrandsPerSheet = 16, ParticlesPerStrand = 24, StrandLength = 0.45f }),
         ("short", "8,700 strands × 8 particles, 10 cm", () => new GroomSettings { StrandsPerSheet = 20, ParticlesPerStrand = 8, StrandLength = 0.1f }),
         ("small", "960 strands × 12 particles, 25 cm (for slow machines and tests)", () => new GroomSettings { SheetCount = 120, StrandsPerSheet = 8, ParticlesPerStrand = 12 }),
+        (MeshHead, "6,000 strands × 16 particles grown on a mesh head with ears, nose and neck (distance-field collision)",
+            () => new GroomSettings { SheetCount = 300, StrandsPerSheet = 20 }),
     ];
+
+    /// <summary>The groom grown on <see cref="HairSim.Meshes.ProceduralHead"/> instead of the ellipsoid.</summary>
+    public const string MeshHead = "mesh head";
+
+    /// <summary>The named groom's scene: on the ellipsoid head, or for <see cref="MeshHead"/> on the project's mesh head.</summary>
+    public static HairScene BuildScene(string name, int? strandsPerSheet = null)
+    {
+        var g = Create(name, strandsPerSheet);
+        if (!string.Equals(name, MeshHead, StringComparison.OrdinalIgnoreCase)) return GroomBuilder.BuildScene(g);
+        var mesh = HairSim.Meshes.ProceduralHead.Create();
+        var field = HairSim.Meshes.SignedDistanceField.Bake(mesh, 0.0025f);
+        return HairSim.Meshes.MeshScalp.BuildScene(mesh, field, new HairSim.Meshes.MeshGroomSettings
+        {
+            SheetCount = g.SheetCount, StrandsPerSheet = g.StrandsPerSheet, ParticlesPerStrand = g.ParticlesPerStrand,
+            StrandLength = g.StrandLength, ScalpMaskThreshold = 0.5f,
+        });
+    }
 
     /// <summary>The named groom, with its strands per sheet (the density) overridden when given.</summary>
     public static GroomSettings Create(string name, int? strandsPerSheet = null)

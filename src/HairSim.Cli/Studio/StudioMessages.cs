@@ -105,7 +105,7 @@ public sealed record ColliderState(string Kind, float[] Center, float[] End, flo
 
 /// <summary>Everything the page shows besides the strands themselves.</summary>
 public sealed record StudioState(
-    string Groom, GroomChoice[] Grooms, bool CanRegrow,
+    string Groom, GroomChoice[] Grooms, bool CanRegrow, bool HasMesh,
     int Strands, int Particles, int LiveParticles, int CutStrands, double TotalRestLength, int EditStamp,
     int Revision, long Frame, double SimTime, double StepMs, double StepMsWorst, double SimHz, bool Paused, bool Shake,
     int UndoCount, int RedoCount, int[] Selection,

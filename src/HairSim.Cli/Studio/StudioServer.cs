@@ -48,6 +48,7 @@ public static class StudioServer
         app.MapGet("/api/state", () => Results.Json(s.State()));
         app.MapGet("/api/frame", () => Results.Bytes(s.Frame(), "application/octet-stream"));
         app.MapGet("/api/topology", () => Results.Bytes(s.Topology(), "application/octet-stream"));
+        app.MapGet("/api/mesh", () => s.Mesh() is { } m ? Results.Bytes(m, "application/octet-stream") : Results.NotFound());
         app.MapPost("/api/cut", (StrokeRequest r) => Run(() => s.Cut(r)));
         app.MapPost("/api/select", (SelectRequest r) => Run(() => s.Select(r)));
         app.MapPost("/api/select/clear", () => Run(s.ClearSelection));

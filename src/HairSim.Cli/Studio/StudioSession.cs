@@ -147,6 +147,12 @@ public sealed class StudioSession : IDisposable
 
     public byte[] Topology() { lock (_gate) return FrameEncoder.EncodeTopology(_scene.World, _revision); }
 
+    /// <summary>The mesh the hair collides with (head space), or null for heads made of colliders only.</summary>
+    public byte[]? Mesh()
+    {
+        lock (_gate) return _scene.GetComponent<HairSim.Meshes.MeshCollider>()?.Mesh is { } m ? FrameEncoder.EncodeMesh(m) : null;
+    }
+
     public StudioState State()
     {
         lock (_gate)
@@ -165,6 +171,7 @@ public sealed class StudioSession : IDisposable
             var selected = _selection?.Strands.ToArray() ?? [];
             return new StudioState(
                 _groomName, StudioGrooms.All.Select(g => new GroomChoice(g.Name, g.Description)).ToArray(), _groomWorld != null,
+                _scene.GetComponent<HairSim.Meshes.MeshCollider>()?.Mesh != null,
                 w.StrandCount, w.ParticleCount, live, cut, w.TotalRestLength(), w.EditStamp,
                 _revision, _frame, _simTime, _stepMs, _stepMsWorst, _simHz, _paused, _shake,
                 _history.UndoCount, _history.RedoCount, selected,
@@ -303,6 +310,8 @@ public sealed class StudioSession : IDisposable
         lock (_gate)
         {
             var keepGroom = _groomWorld != null && loaded.World.SameLayout(_groomWorld) ? _groomWorld : null;
+            // A hairstyle file holds the hair, not the head mesh: a haircut of this groom keeps colliding with its mesh.
+            if (keepGroom != null && _scene.GetComponent<HairSim.Meshes.MeshCollider>() is { } mesh) loaded.SetComponent(mesh);
             Install(loaded, keepGroom, keepGroom != null ? _groomName : "loaded file");
             var head = loaded.World.Head;
             _headPosition = head.Position;
@@ -372,10 +381,10 @@ public sealed class StudioSession : IDisposable
     /// <summary>Starts afresh with a named groom (the edit history is cleared: the old hair is gone).</summary>
     public string SetGroom(GroomRequest r)
     {
-        var groom = StudioGrooms.Create(r.Name ?? StudioGrooms.Default, r.StrandsPerSheet);
+        StudioGrooms.Create(r.Name ?? StudioGrooms.Default, r.StrandsPerSheet);   // refuse bad values before anything changes
         lock (_gate)
         {
-            LoadGroom(r.Name ?? StudioGrooms.Default, r.StrandsPerSheet, groom);
+            LoadGroom(r.Name ?? StudioGrooms.Default, r.StrandsPerSheet);
             return Say($"New groom '{_groomName}': {_scene.World.StrandCount:N0} strands.");
         }
     }
@@ -403,10 +412,9 @@ public sealed class StudioSession : IDisposable
 
     private string Say(string message) => _message = message;
 
-    private void LoadGroom(string name, int? strandsPerSheet, GroomSettings? groom = null)
+    private void LoadGroom(string name, int? strandsPerSheet)
     {
-        groom ??= StudioGrooms.Create(name, strandsPerSheet);
-        var scene = GroomBuilder.BuildScene(groom);
+        var scene = StudioGrooms.BuildScene(name, strandsPerSheet);
         Install(scene, scene.World.Clone(), name.ToLowerInvariant());
         _headPosition = Vector3.Zero; _yaw = _pitch = _roll = 0f; _shake = false;
     }

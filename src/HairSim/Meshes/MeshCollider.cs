@@ -9,8 +9,9 @@ namespace HairSim.Meshes;
 /// </summary>
 public sealed class MeshCollider
 {
-    public MeshCollider(SignedDistanceField field, float margin = 0f)
+    public MeshCollider(SignedDistanceField field, float margin = 0f, TriangleMesh? mesh = null)
     {
+        Mesh = mesh;
         ArgumentNullException.ThrowIfNull(field);
         if (!float.IsFinite(margin) || margin < 0f || margin >= field.Band)
             throw new ArgumentOutOfRangeException(nameof(margin), margin, $"Margin must be in [0, {field.Band}) metres (the field's band).");
@@ -18,6 +19,8 @@ public sealed class MeshCollider
     }
 
     public SignedDistanceField Field { get; }
+    /// <summary>The mesh the field was baked from, when known (for drawing it; the collision reads only the field).</summary>
+    public TriangleMesh? Mesh { get; }
     /// <summary>Hair keeps at least this far from the surface (metres), like the root lift of an ellipsoid groom.</summary>
     public float Margin { get; }
 }

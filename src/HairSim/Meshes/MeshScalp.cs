@@ -48,7 +48,7 @@ public static class MeshScalp
     public static HairScene BuildScene(TriangleMesh mesh, SignedDistanceField field, MeshGroomSettings g, SimulationSettings? settings = null)
     {
         var scene = new HairScene(Grow(mesh, field, g), settings);
-        scene.SetComponent(new MeshCollider(field, Math.Min(g.RootLift * 0.5f, field.Band * 0.5f)));
+        scene.SetComponent(new MeshCollider(field, Math.Min(g.RootLift * 0.5f, field.Band * 0.5f), mesh));
         return scene;
     }
 
@@ -105,8 +105,11 @@ public static class MeshScalp
         var world = new HairWorld(perSheet, particles);
         var pts = new Vector3[g.ParticlesPerStrand];
         float segment = g.StrandLength / (g.ParticlesPerStrand - 1);
-        var size = mesh.BoundsMax - mesh.BoundsMin;
-        float turn = g.Drape * segment * 4f / MathF.Max(1e-6f, (size.X + size.Y + size.Z) / 3f);
+        // Turning down with a bend radius of about a quarter of the scalp's size, as the ellipsoid groom does.
+        var lo = new Vector3(float.MaxValue); var hi = new Vector3(float.MinValue);
+        foreach (var r in roots) { lo = Vector3.Min(lo, r.P); hi = Vector3.Max(hi, r.P); }
+        var half = (hi - lo) * 0.5f;
+        float turn = g.Drape * segment * 12f / MathF.Max(1e-6f, half.X + half.Y + half.Z);
         int strand = 0;
         foreach (var members in nonEmpty)
         {

@@ -286,6 +286,28 @@ public sealed class StudioSessionTests : IDisposable
     }
 
     [Fact]
+    public void MeshHeadGroomCarriesItsMeshForThePageAndThroughSaveAndLoad()
+    {
+        Assert.Null(_session.Mesh());
+        _session.SetGroom(new GroomRequest { Name = StudioGrooms.MeshHead, StrandsPerSheet = 4 });
+        var state = _session.State();
+        Assert.True(state.HasMesh);
+        Assert.Empty(state.Colliders);
+        var mesh = _session.Mesh()!;
+        Assert.Equal("HSM1"u8.ToArray(), mesh[..4]);
+        int vertices = BitConverter.ToInt32(mesh, 4), triangles = BitConverter.ToInt32(mesh, 8);
+        Assert.InRange(triangles, 10_000, 50_000);
+        Assert.Equal(12 + 12 * vertices + 12 * triangles, mesh.Length);
+        Settle(30);
+        Assert.Equal(0, _session.State().Metrics.ParticlesInside);
+        _session.SetPaused(true);
+        var saved = _session.Save();
+        _session.Load(saved);
+        Assert.True(_session.State().HasMesh, "the loaded haircut still collides with the head mesh");
+        Assert.Equal(saved, _session.Save());
+    }
+
+    [Fact]
     public async Task HttpApiServesStateFramesAndRefusesBadRequestsWith400()
     {
         var (app, url) = await StudioServer.StartAsync(_session, "127.0.0.1", 0);

@@ -79,6 +79,9 @@ export class HairView {
 
     this.head = new THREE.Group();
     this.scene.add(this.head);
+    this.colliderGroup = new THREE.Group();   // the head's colliders (and a face), rebuilt when they change
+    this.meshGroup = new THREE.Group();       // the head mesh of a mesh groom
+    this.head.add(this.colliderGroup, this.meshGroup);
     this.colliderKey = '';
 
     this.geometry = new THREE.BufferGeometry();
@@ -240,7 +243,7 @@ export class HairView {
     const key = JSON.stringify(colliders);
     if (key === this.colliderKey) return;
     this.colliderKey = key;
-    for (const child of [...this.head.children]) { this.head.remove(child); child.geometry?.dispose(); }
+    for (const child of [...this.colliderGroup.children]) { this.colliderGroup.remove(child); child.geometry?.dispose(); }
     const skin = new THREE.MeshStandardMaterial({ color: 0xd9ad8f, roughness: 0.75 });
     for (const c of colliders) {
       let mesh;
@@ -255,7 +258,7 @@ export class HairView {
         mesh.scale.set(...(c.kind === 'Sphere' ? [c.radii[0], c.radii[0], c.radii[0]] : c.radii));
         mesh.quaternion.set(...c.rotation);
       }
-      this.head.add(mesh);
+      this.colliderGroup.add(mesh);
     }
     const head = colliders.find(c => c.kind === 'Ellipsoid');
     if (head) this.addFace(head);
@@ -268,12 +271,26 @@ export class HairView {
     for (const side of [-1, 1]) {
       const eye = new THREE.Mesh(new THREE.SphereGeometry(0.007, 16, 12), dark);
       eye.position.set(...onFront(side * 0.3 * rx, 0.05 * ry));
-      this.head.add(eye);
+      this.colliderGroup.add(eye);
     }
     const nose = new THREE.Mesh(new THREE.ConeGeometry(0.009, 0.025, 16), new THREE.MeshStandardMaterial({ color: 0xcf9f82, roughness: 0.8 }));
     nose.position.set(...onFront(0, -0.2 * ry));
     nose.rotation.x = Math.PI / 2;
-    this.head.add(nose);
+    this.colliderGroup.add(nose);
+  }
+
+  /** The head mesh (binary "HSM1", head space) of a mesh groom, or null to remove it. */
+  setHeadMesh(buffer) {
+    for (const child of [...this.meshGroup.children]) { this.meshGroup.remove(child); child.geometry?.dispose(); }
+    if (!buffer) return;
+    const dv = new DataView(buffer);
+    if (dv.getUint32(0, true) !== 0x314D5348) throw new Error('not a mesh message');
+    const nv = dv.getInt32(4, true), nt = dv.getInt32(8, true);
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(buffer.slice(12, 12 + 12 * nv)), 3));
+    geometry.setIndex(new THREE.BufferAttribute(new Uint32Array(buffer.slice(12 + 12 * nv, 12 + 12 * nv + 12 * nt)), 1));
+    geometry.computeVertexNormals();
+    this.meshGroup.add(new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: 0xd9ad8f, roughness: 0.75 })));
   }
 
   render() {

@@ -60,6 +60,11 @@ class Studio {
     const s = await state();
     this.state = s;
     this.view.setColliders(s.colliders);
+    const meshKey = s.hasMesh ? `${s.groom}/${s.particles}` : '';
+    if (meshKey !== this.meshKey) {
+      this.meshKey = meshKey;
+      this.view.setHeadMesh(s.hasMesh ? await binary('mesh') : null);
+    }
     if (!sameArray(s.selection, this.lastSelection)) { this.lastSelection = s.selection; this.view.setSelection(s.selection); }
     this.showState(s);
   }
@@ -196,8 +201,10 @@ class Studio {
     $('show').value = String(this.view.strandStride);
     $('show').addEventListener('change', e => this.view.setStrandStride(+e.target.value));
     $('density').addEventListener('input', e => { $('density-value').textContent = e.target.value; });
+    $('groom').addEventListener('change', e => { this.groomChoice = e.target.value; });
     $('grow').addEventListener('click', async () => {
       await this.run(() => command('groom', { name: $('groom').value, strandsPerSheet: +$('density').value }));
+      this.groomChoice = null;
       this.syncHeadFromState();
     });
   }
@@ -213,7 +220,8 @@ class Studio {
     if (groom.options.length !== s.grooms.length) {
       groom.replaceChildren(...s.grooms.map(g => new Option(`${g.name}: ${g.description}`, g.name)));
     }
-    if (document.activeElement !== groom && s.grooms.some(g => g.name === s.groom)) groom.value = s.groom;
+    // The server's groom, unless the user has picked another one and not grown it yet.
+    if (!this.groomChoice && s.grooms.some(g => g.name === s.groom)) groom.value = s.groom;
     for (const [name, slider] of Object.entries(this.sliders)) {
       if (slider.editing || document.activeElement === $(name)) continue;
       $(name).value = slider.toSlider(s.settings[name]);

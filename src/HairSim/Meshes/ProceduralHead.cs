@@ -1,0 +1,38 @@
+using System.Numerics;
+
+namespace HairSim.Meshes;
+
+/// <summary>
+/// A head made by the project (licence-clean, no file needed): the reference groom's head ellipsoid with ears,
+/// a nose and a neck as separate closed parts, its scalp painted red in the vertex colours (the crown and the back,
+/// down to the ears, not the face). About 34k triangles. For the demo, the studio and tests of mesh heads.
+/// </summary>
+public static class ProceduralHead
+{
+    public static readonly Vector3 CraniumRadii = new(0.078f, 0.1f, 0.095f);
+
+    public static TriangleMesh Create(int detail = 1)
+    {
+        if (detail < 1 || detail > 4) throw new ArgumentOutOfRangeException(nameof(detail), detail, "Detail must be 1 … 4.");
+        int rings = 72 * detail, segments = 144 * detail;
+        var cranium = Paint(TriangleMesh.Ellipsoid(Vector3.Zero, CraniumRadii, rings, segments), OnScalp);
+        var parts = new List<TriangleMesh> { cranium };
+        foreach (float side in new[] { -1f, 1f })   // ears: 8 mm thick, standing slightly off the head
+            parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(side * 0.079f, -0.008f, -0.006f), new Vector3(0.004f, 0.03f, 0.017f), 16 * detail, 32 * detail), _ => false));
+        parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(0, -0.022f, 0.094f), new Vector3(0.011f, 0.022f, 0.016f), 16 * detail, 32 * detail), _ => false));
+        parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(0, -0.14f, -0.012f), new Vector3(0.05f, 0.08f, 0.05f), 24 * detail, 48 * detail), _ => false));
+        return TriangleMesh.Combine(parts);
+    }
+
+    /// <summary>The scalp: above the ears all round, receding from the forehead (as the ellipsoid groom's scalp does).</summary>
+    public static bool OnScalp(Vector3 p)
+    {
+        var u = Vector3.Normalize(p / CraniumRadii);
+        float fromTop = MathF.Acos(Math.Clamp(u.Y, -1f, 1f));
+        float front = MathF.Max(0f, u.Z);   // 0 at the sides and back, 1 at the face
+        return fromTop < 1.95f - (1.95f - 0.95f) * front;
+    }
+
+    private static TriangleMesh Paint(TriangleMesh m, Func<Vector3, bool> scalp) =>
+        new(m.Positions, m.Indices, m.Positions.Select(p => scalp(p) ? new Vector4(1, 0, 0, 1) : new Vector4(0, 0, 0, 1)).ToArray());
+}
