@@ -63,16 +63,7 @@ public static class GroomBuilder
         var shell = a + new Vector3(g.RootLift);
         for (int k = 1; k < pts.Length; k++)
         {
-            if (k >= g.PinnedPerStrand && turn > 0f)
-            {
-                float angle = MathF.Acos(Math.Clamp(Vector3.Dot(dir, down), -1f, 1f));
-                if (angle > 1e-6f)
-                {
-                    var axis = Vector3.Cross(dir, down);
-                    axis = axis.LengthSquared() > 1e-12f ? Vector3.Normalize(axis) : Vector3.UnitX;
-                    dir = Vector3.Normalize(Vector3.Transform(dir, Quaternion.CreateFromAxisAngle(axis, MathF.Min(turn, angle))));
-                }
-            }
+            if (k >= g.PinnedPerStrand && turn > 0f) dir = GroomBuilder.TurnTowards(dir, down, turn);
             var next = pts[k - 1] + dir * segment;
             for (int it = 0; it < 3 && turn > 0f; it++)
             {
@@ -86,6 +77,16 @@ public static class GroomBuilder
             }
             pts[k] = next;
         }
+    }
+
+    /// <summary>Unit direction turned towards <paramref name="target"/> by at most <paramref name="maxAngle"/> radians (combing).</summary>
+    internal static Vector3 TurnTowards(Vector3 dir, Vector3 target, float maxAngle)
+    {
+        float angle = MathF.Acos(Math.Clamp(Vector3.Dot(dir, target), -1f, 1f));
+        if (!(angle > 1e-6f)) return dir;
+        var axis = Vector3.Cross(dir, target);
+        axis = axis.LengthSquared() > 1e-12f ? Vector3.Normalize(axis) : Vector3.UnitX;
+        return Vector3.Normalize(Vector3.Transform(dir, Quaternion.CreateFromAxisAngle(axis, MathF.Min(maxAngle, angle))));
     }
 
     /// <summary>A ready scene: the groomed world, its head ellipsoid as collider, and the given settings.</summary>

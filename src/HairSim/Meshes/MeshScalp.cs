@@ -213,16 +213,7 @@ public static class MeshScalp
         var down = -Vector3.UnitY;
         for (int k = 1; k < pts.Length; k++)
         {
-            if (k >= g.PinnedPerStrand && turn > 0f)
-            {
-                float angle = MathF.Acos(Math.Clamp(Vector3.Dot(dir, down), -1f, 1f));
-                if (angle > 1e-6f)
-                {
-                    var axis = Vector3.Cross(dir, down);
-                    axis = axis.LengthSquared() > 1e-12f ? Vector3.Normalize(axis) : Vector3.UnitX;
-                    dir = Vector3.Normalize(Vector3.Transform(dir, Quaternion.CreateFromAxisAngle(axis, MathF.Min(turn, angle))));
-                }
-            }
+            if (k >= g.PinnedPerStrand && turn > 0f) dir = GroomBuilder.TurnTowards(dir, down, turn);
             var next = pts[k - 1] + dir * segment;
             for (int it = 0; it < 4; it++)
             {
