@@ -1,4 +1,5 @@
 using System.Numerics;
+using HairSim.Meshes;
 
 namespace HairSim.Editing;
 
@@ -22,6 +23,39 @@ public static class ColliderRay
             default:
                 return Capsule(c.Center, c.End, c.Radius, o, d, out t);
         }
+    }
+
+    /// <summary>
+    /// First hit t in [0, maxT] of the ray o + t·d (d unit, world space) with a mesh collider at the head pose: sphere
+    /// tracing of its distance field in head space, from where the ray enters the field's grid.
+    /// </summary>
+    public static bool Intersect(MeshCollider mesh, in RigidTransform head, Vector3 o, Vector3 d, float maxT, out float t)
+    {
+        var f = mesh.Field;
+        var lo = head.InverseTransformPoint(o);
+        var ld = head.InverseTransformDirection(d);
+        var bmin = f.Origin;
+        var bmax = f.Origin + new Vector3(f.Nx - 1, f.Ny - 1, f.Nz - 1) * f.CellSize;
+        float t0 = 0f, t1 = maxT;
+        for (int a = 0; a < 3; a++)
+        {
+            float oa = a == 0 ? lo.X : a == 1 ? lo.Y : lo.Z, da = a == 0 ? ld.X : a == 1 ? ld.Y : ld.Z;
+            float lo_ = a == 0 ? bmin.X : a == 1 ? bmin.Y : bmin.Z, hi = a == 0 ? bmax.X : a == 1 ? bmax.Y : bmax.Z;
+            if (MathF.Abs(da) < 1e-12f) { if (oa < lo_ || oa > hi) { t = 0f; return false; } continue; }
+            float ta = (lo_ - oa) / da, tb = (hi - oa) / da;
+            if (ta > tb) (ta, tb) = (tb, ta);
+            t0 = MathF.Max(t0, ta); t1 = MathF.Min(t1, tb);
+        }
+        t = t0;
+        if (t0 > t1) return false;
+        float hit = 0.25f * f.CellSize;
+        for (int i = 0; i < 1024 && t <= t1; i++)
+        {
+            float dist = f.Distance(lo + ld * t);
+            if (dist < hit) return true;
+            t += MathF.Max(dist, 0.5f * f.CellSize);
+        }
+        return false;
     }
 
     /// <summary>First t ≥ 0 where |o + t·d| = 1 (or 0 if o is inside).</summary>

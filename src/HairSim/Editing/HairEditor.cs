@@ -30,6 +30,7 @@ public static class HairEditor
         var grid = new StrokeGrid(stroke.Points);
         var colliders = new Collider[options.Reach == CutReach.VisibleOnly ? scene.Colliders.Count : 0];
         for (int c = 0; c < colliders.Length; c++) colliders[c] = scene.Colliders[c].ToWorld(w.Head);
+        var mesh = options.Reach == CutReach.VisibleOnly ? scene.GetComponent<Meshes.MeshCollider>() : null;
         var m = cam.ViewProjection;
         float vw = cam.ViewportSize.X * 0.5f, vh = cam.ViewportSize.Y * 0.5f;
         var cuts = new List<StrandCut>();
@@ -47,7 +48,7 @@ public static class HairEditor
                 double cumPrev = cum;
                 cum += w.RestLength[i];
                 if (okA && okB && w.InvMass[i] != 0f && grid.FirstCrossing(sa, sb, out float t2)
-                    && TryCutAt(w, cam, colliders, options, s, k, Vector2.Lerp(sa, sb, t2), t2, cumPrev, out var cut))
+                    && TryCutAt(w, cam, colliders, mesh, options, s, k, Vector2.Lerp(sa, sb, t2), t2, cumPrev, out var cut))
                 {
                     cuts.Add(cut);
                     break;
@@ -69,7 +70,7 @@ public static class HairEditor
     }
 
     /// <summary>Lifts a screen crossing onto strand segment (k−1, k) and checks the cut's rules.</summary>
-    private static bool TryCutAt(HairWorld w, StrokeCamera cam, Collider[] colliders, CutOptions o, int s, int k,
+    private static bool TryCutAt(HairWorld w, StrokeCamera cam, Collider[] colliders, Meshes.MeshCollider? mesh, CutOptions o, int s, int k,
         Vector2 screen, float t2, double cumPrev, out StrandCut cut)
     {
         cut = default;
@@ -86,6 +87,7 @@ public static class HairEditor
             foreach (var c in colliders)
                 if (ColliderRay.Intersect(c, origin, dir, out float th) && th < tp - 1e-4f) return false;
         }
+        if (mesh != null && MeshHides(mesh, w.Head, origin, dir, Vector3.Dot(p - origin, dir))) return false;
         float len = Vector3.Distance(a, p);
         if (len < MinTipSegment)
         {
@@ -124,6 +126,7 @@ public static class HairEditor
         var w = scene.World;
         var colliders = new Collider[options.VisibleOnly ? scene.Colliders.Count : 0];
         for (int c = 0; c < colliders.Length; c++) colliders[c] = scene.Colliders[c].ToWorld(w.Head);
+        var mesh = options.VisibleOnly ? scene.GetComponent<Meshes.MeshCollider>() : null;
         var chosen = new List<int>();
         for (int s = 0; s < w.StrandCount; s++)
         {
@@ -133,12 +136,24 @@ public static class HairEditor
                 var p = w.GetPosition(first + k);
                 if (!camera.Project(p, out var sp, out _) || !area.Contains(sp)) continue;
                 if (colliders.Length > 0 && Hidden(camera, colliders, p, sp)) continue;
+                if (mesh != null)
+                {
+                    var (o, d) = camera.ScreenRay(sp);
+                    if (MeshHides(mesh, w.Head, o, d, Vector3.Dot(p - o, d))) continue;
+                }
                 chosen.Add(s);
                 break;
             }
         }
         return new StrandSelection(w, chosen.ToArray());
     }
+
+    /// <summary>
+    /// Does the mesh cover a point at ray distance tp? The trace stops a little short of the point (two cells, at least
+    /// 2 mm), so hair lying on the surface is not hidden by the surface under it.
+    /// </summary>
+    private static bool MeshHides(Meshes.MeshCollider mesh, in RigidTransform head, Vector3 origin, Vector3 dir, float tp) =>
+        ColliderRay.Intersect(mesh, head, origin, dir, tp - MathF.Max(0.002f, 2f * mesh.Field.CellSize), out _);
 
     private static bool Hidden(StrokeCamera cam, Collider[] colliders, Vector3 p, Vector2 screen)
     {

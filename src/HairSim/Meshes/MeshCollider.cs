@@ -51,26 +51,13 @@ public sealed class MeshCollideSystem : IHairSystem
         var t = head.Position;
         var field = mc.Field;
         float margin = mc.Margin, slide = ctx.Settings.ContactSlide, slack = 0.1f * field.CellSize + 1e-5f;
-        float[] x = w.PosX, y = w.PosY, z = w.PosZ;
         for (int s = begin; s < end; s++)
         {
             int first = w.StrandFirst[s], last = first + w.StrandParticleCount[s];
             float previous = float.MaxValue;
             for (int i = first; i < last; i++)
             {
-                var local = Vector3.TransformNormal(new Vector3(x[i], y[i], z[i]) - t, toLocal);
-                float d = field.Distance(local);
-                if (d < margin && w.InvMass[i] != 0f)
-                {
-                    field.Sample(local, out var g);
-                    if (g.LengthSquared() > 1e-12f)
-                    {
-                        var n = Vector3.Normalize(g);
-                        w.PutPosition(i, t + Vector3.TransformNormal(local + n * (margin - d), toWorld));
-                        RemoveInward(w, i, Vector3.TransformNormal(n, toWorld), slide);
-                        d = margin;
-                    }
-                }
+                float d = PushOut(w, field, i, t, toLocal, toWorld, margin, slide);
                 // The segment's midpoint can only be inside if an end is within half a segment of the surface (the
                 // field is 1-Lipschitz up to trilinear slack): most segments skip the second sample.
                 if (i > first && MathF.Max(previous, d) - 0.5f * w.RestLength[i] < margin + slack)
@@ -86,11 +73,33 @@ public sealed class MeshCollideSystem : IHairSystem
                             w.PutPosition(j, w.GetPosition(j) + push * (margin - dm));
                             RemoveInward(w, j, push, slide);
                         }
+                        // Lifting a segment over a thin part (an ear) can push an end into it from the other side.
+                        PushOut(w, field, i - 1, t, toLocal, toWorld, margin, slide);
+                        d = PushOut(w, field, i, t, toLocal, toWorld, margin, slide);
                     }
                 }
                 previous = d;
             }
         }
+    }
+
+    /// <summary>Pushes particle i out to the margin (up to three steps: in a crease one push can land in the other part); returns its distance.</summary>
+    private static float PushOut(HairWorld w, SignedDistanceField field, int i, Vector3 t, in Matrix4x4 toLocal, in Matrix4x4 toWorld, float margin, float slide)
+    {
+        var local = Vector3.TransformNormal(w.GetPosition(i) - t, toLocal);
+        float d = field.Distance(local);
+        if (d >= margin || w.InvMass[i] == 0f) return d;
+        for (int it = 0; it < 3 && d < margin; it++)
+        {
+            field.Sample(local, out var g);
+            if (g.LengthSquared() <= 1e-12f) break;
+            var n = Vector3.Normalize(g);
+            local += n * (margin - d);
+            RemoveInward(w, i, Vector3.TransformNormal(n, toWorld), slide);
+            d = field.Distance(local);
+        }
+        w.PutPosition(i, t + Vector3.TransformNormal(local, toWorld));
+        return d;
     }
 
     private static void RemoveInward(HairWorld w, int i, Vector3 normal, float slide)

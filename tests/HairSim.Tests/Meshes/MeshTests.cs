@@ -1,5 +1,6 @@
 using System.Numerics;
 using System.Text;
+using HairSim.Editing;
 using HairSim.Meshes;
 using HairSim.Measurement;
 using Xunit;
@@ -186,6 +187,38 @@ public sealed class MeshTests
         new MeshCollideSystem().Run(scene, ctx, 0, 0, 1);
         Assert.True(sdf.Distance(0.5f * (world.GetPosition(1) + world.GetPosition(2))) > -1e-4f, "the segment's middle is out of the rim");
         Assert.True(world.GetPosition(2).Y > -1e-4f);
+    }
+
+    [Fact]
+    public void VisibleOnlySelectionAndCutSeeTheMeshHead()
+    {
+        var head = ProceduralHead.Create();
+        var sdf = SignedDistanceField.Bake(head, 0.0025f);
+        var scene = MeshScalp.BuildScene(head, sdf, new MeshGroomSettings { SheetCount = 60, StrandsPerSheet = 5, ScalpMaskThreshold = 0.5f });
+        var camera = StrokeCamera.LookAtPerspective(new Vector3(0, 0.05f, 0.95f), new Vector3(0, -0.06f, 0), Vector3.UnitY, 0.6f, new Vector2(800, 800));
+        var everything = SelectionArea.Rectangle(Vector2.Zero, new Vector2(800, 800));
+        var all = HairEditor.Select(scene, camera, everything, new SelectionOptions { RootsOnly = true });
+        var visible = HairEditor.Select(scene, camera, everything, new SelectionOptions { RootsOnly = true, VisibleOnly = true });
+        Assert.Equal(scene.World.StrandCount, all.Count);
+        Assert.InRange(visible.Count, 1, all.Count - 1);
+        // What the head hides is at the back: no visible root is behind the head's centre and far from its outline.
+        foreach (int s in visible.Strands)
+        {
+            var r = scene.World.GetPosition(scene.World.RootIndex(s));
+            Assert.False(r.Z < -0.05f && MathF.Abs(r.X) < 0.04f, $"root {r} behind the head counted as visible");
+        }
+        // A cut across the whole head at ear height: through the head it reaches more strands than in front of it.
+        Settle(scene);
+        var line = new Stroke([new Vector2(0, 430), new Vector2(800, 430)], camera);
+        int front = HairEditor.Cut(scene, line, new CutOptions { Reach = CutReach.VisibleOnly }).Cuts.Count;
+        int through = HairEditor.Cut(scene, line, new CutOptions { Reach = CutReach.AllThrough }).Cuts.Count;
+        Assert.InRange(front, 1, through - 1);
+    }
+
+    private static void Settle(HairScene scene)
+    {
+        var sim = new HairSimulation(scene);
+        for (int f = 0; f < 30; f++) sim.Step(1f / 60f);
     }
 
     [Fact]
