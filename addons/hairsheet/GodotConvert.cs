@@ -10,6 +10,13 @@ namespace HairSheet;
 public static class GodotConvert
 {
     public static NVector3 ToNumerics(this Vector3 v) => new(v.X, v.Y, v.Z);
+
+    /// <summary>A Godot transform as a System.Numerics matrix (row vectors: p' = p · M, so the basis columns become rows).</summary>
+    public static System.Numerics.Matrix4x4 ToNumericsMatrix(this Transform3D t) => new(
+        t.Basis.Column0.X, t.Basis.Column0.Y, t.Basis.Column0.Z, 0f,
+        t.Basis.Column1.X, t.Basis.Column1.Y, t.Basis.Column1.Z, 0f,
+        t.Basis.Column2.X, t.Basis.Column2.Y, t.Basis.Column2.Z, 0f,
+        t.Origin.X, t.Origin.Y, t.Origin.Z, 1f);
     public static NVector2 ToNumerics(this Vector2 v) => new(v.X, v.Y);
     public static NVector4 ToNumerics(this Color c) => new(c.R, c.G, c.B, c.A);
     public static Vector3 ToGodot(this NVector3 v) => new(v.X, v.Y, v.Z);

@@ -499,6 +499,12 @@ public partial class HairSystem3D : Node3D
         }
         scene.ClearColliders();
         foreach (var c in list) scene.AddCollider(c);
+        // A mesh collider (HairMeshCollider3D with a baked field) joins as a scene component; the pipeline adds its system.
+        HairSim.Meshes.MeshCollider? mesh = null;
+        foreach (var child in GetChildren())
+            if (child is HairMeshCollider3D m && m.Visible && m.ToComponent() is { } component) { mesh = component; break; }
+        if (mesh != null) scene.SetComponent(mesh);
+        else scene.RemoveComponent<HairSim.Meshes.MeshCollider>();
     }
 
     private void Draw()

@@ -194,6 +194,22 @@ public sealed class SignedDistanceField
     }
 
 
+    /// <summary>The baked distances, x fastest then y then z (a copy: for storing the field, e.g. in a Godot resource).</summary>
+    public float[] CopyDistances() => (float[])_d.Clone();
+
+    /// <summary>A field stored earlier (<see cref="CopyDistances"/> and the grid's shape); checked, so a corrupt store is refused.</summary>
+    public static SignedDistanceField FromData(Vector3 origin, float cellSize, int nx, int ny, int nz, float[] distances)
+    {
+        ArgumentNullException.ThrowIfNull(distances);
+        if (!float.IsFinite(origin.X + origin.Y + origin.Z)) throw new ArgumentException("The field's origin is not finite.", nameof(origin));
+        if (!float.IsFinite(cellSize) || cellSize <= 0f) throw new ArgumentOutOfRangeException(nameof(cellSize), cellSize, "Cell size must be positive.");
+        if (nx < 2 || ny < 2 || nz < 2 || (long)nx * ny * nz > MaxCells)
+            throw new ArgumentOutOfRangeException(nameof(nx), $"A field has 2 … {MaxCells:N0} cells with at least two each way; got {nx}×{ny}×{nz}.");
+        if (distances.Length != nx * ny * nz) throw new ArgumentException($"{distances.Length} distances for {nx}×{ny}×{nz} cells.", nameof(distances));
+        foreach (float v in distances) if (!float.IsFinite(v)) throw new ArgumentException("The field holds a non-finite distance.", nameof(distances));
+        return new SignedDistanceField(origin, cellSize, nx, ny, nz, (float[])distances.Clone(), TimeSpan.Zero);
+    }
+
     /// <summary>Signed distance at p (metres; negative inside), trilinear between cells; +band outside the grid.</summary>
     public float Distance(Vector3 p)
     {
