@@ -104,7 +104,34 @@ public static class ReportCommand
         Array.Sort(all, (x, y) => rows[x].Timing.MicrosecondsPerFrame.CompareTo(rows[y].Timing.MicrosecondsPerFrame));
         Table(md, rows, all, def, front);
         HeldShapeSweeps(md, quick);
+        VolumeSection(md);
         StabilityCommand.WriteFile(output, md.ToString());
+    }
+
+    /// <summary>
+    /// Today's hair volume on the reference scene (there is no hair–hair interaction yet): the outer layer's mean height
+    /// above the scalp as grown, settled, and after a head shake, the baseline a volume solver is measured against.
+    /// </summary>
+    private static void VolumeSection(StringBuilder md)
+    {
+        md.Append("\n## Hair volume (no hair–hair interaction yet)\n\n");
+        md.Append("The reference scene under three bend models: the outer layer's mean height above the crown (`HairVolume.OuterLayerThickness` with directions more than 0.5 rad above the head's equator, binned 24 × 8; the farthest particle above the head ellipsoid in each bin, averaged). Strands do not push on one another, so what keeps volume is only each strand's own shape: the default rest-shape model holds the groom's lift; the source's triples and limp hair sink towards the scalp. This is the baseline a volume solver is measured against.\n\n");
+        md.Append("| bend model | as grown (mm) | after 2 s still | after a 3 s head shake and 1 s still |\n|---|---:|---:|---:|\n");
+        using var threads = ThreadDispatchers.CreateDefault();
+        foreach (var bend in new[] { BendModel.RestShape, BendModel.SourceTriples, BendModel.Limp })
+        {
+            var g = GroomSettings.Reference();
+            var scene = GroomBuilder.BuildScene(g, new SimulationSettings { Bend = bend });
+            var sim = new HairSimulation(scene, dispatcher: threads);
+            double Thickness() => HairVolume.OuterLayerThickness(scene.World, g.HeadCenter, g.HeadRadii, 0.5f);
+            double grown = Thickness();
+            for (int f = 0; f < 120; f++) sim.Step(1f / 60f);
+            double settled = Thickness();
+            for (int f = 1; f <= 180; f++) sim.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+            for (int f = 0; f < 60; f++) sim.Step(1f / 60f, RigidTransform.Identity);
+            double shaken = Thickness();
+            md.Append(F($"| {bend} | {grown * 1000:F1} | {settled * 1000:F1} ({settled / grown * 100:F0} %) | {shaken * 1000:F1} ({shaken / grown * 100:F0} %) |\n"));
+        }
     }
 
     private static string Group(SolverConfiguration c) => c.Bend switch
