@@ -8,7 +8,7 @@ namespace HairSim.Cli;
 /// <summary>The main job: build the reference scene, simulate it headless, report timings and error figures.</summary>
 public static class RunCommand
 {
-    public const string Help = "simulate the reference scene (435 × 40 × 16) headless: --seconds 10 --hz 60 --substeps N --path fast|reference --sheets --strands --particles --shake --head mesh.glb|.gltf|.obj|procedural (grow on and collide with a mesh; procedural = the project's own head) --sdf-cell 0.0025";
+    public const string Help = "simulate the reference scene (435 × 40 × 16) headless: --seconds 10 --hz 60 --substeps N --path fast|reference --sheets --strands --particles --shake --head mesh.glb|.gltf|.obj|procedural (grow on and collide with a mesh; procedural = the project's own head) --sdf-cell 0.0025 --hairstyle file.hairstyle (run a saved haircut) --export folder (write .hair/.obj/.usda/.hairstyle and front/side SVGs after the run)";
 
     /// <summary>Hair grown on the file's mesh (all of it is scalp unless its vertex colours mark one in red), colliding with its distance field.</summary>
     private static HairScene GrowOnMesh(string path, float cell, GroomSettings groom, SimulationSettings settings)
@@ -48,6 +48,8 @@ public static class RunCommand
         };
         bool shake = a.Flag("shake");
         string? headFile = a.String("head");
+        string? hairstyleFile = a.String("hairstyle");
+        string? exportFolder = a.String("export") is { } ef ? a.OutputFolder("export", ef) : null;
         double cell = a.Double("sdf-cell", 0.0025);
         a.RejectUnknown();
         if (seconds <= 0 || seconds > 3600) throw new ArgumentException("--seconds must be in (0, 3600].");
@@ -55,7 +57,9 @@ public static class RunCommand
 
         if (!(cell > 0 && cell <= 1)) throw new ArgumentException("--sdf-cell must be in (0, 1] metres.");
         var build = Stopwatch.StartNew();
-        var scene = headFile == null ? GroomBuilder.BuildScene(groom, settings) : GrowOnMesh(headFile, (float)cell, groom, settings);
+        if (hairstyleFile != null && headFile != null) throw new ArgumentException("--hairstyle and --head cannot be combined: a hairstyle file holds its own hair.");
+        var scene = hairstyleFile != null ? LoadHairstyle(hairstyleFile, settings)
+            : headFile == null ? GroomBuilder.BuildScene(groom, settings) : GrowOnMesh(headFile, (float)cell, groom, settings);
         build.Stop();
         var w = scene.World;
         using var dispatcher = ThreadDispatchers.CreateDefault();
@@ -91,6 +95,32 @@ public static class RunCommand
             $"frame time: mean {mean:F2} ms, median {times[frames / 2]:F2} ms, p95 {times[(int)(frames * 0.95)]:F2} ms, max {times[^1]:F2} ms ({particleSteps / (times.Sum() / 1000) / 1e6:F1} M particle-steps/s)"));
         Console.WriteLine(string.Create(CultureInfo.InvariantCulture,
             $"after {frames * dt:F2} s: length / rest length = {m.LengthRatio:F5}, max edge stretch = {m.MaxEdgeStretch * 100:F3} %, max penetration = {m.MaxPenetration * 1000:F3} mm ({m.ParticlesInside} particles inside), non-finite values = {m.NonFinite}"));
+        if (exportFolder != null) Export(scene, exportFolder);
         return m.NonFinite == 0 ? 0 : 3;
+    }
+
+    /// <summary>A saved haircut with its own settings; the command line's --substeps and --path still apply.</summary>
+    private static HairScene LoadHairstyle(string path, SimulationSettings overrides)
+    {
+        var scene = HairSim.IO.HairstyleFile.Load(path);
+        scene.Settings.Substeps = overrides.Substeps;
+        scene.Settings.Path = overrides.Path;
+        scene.SettingsChanged();
+        Console.WriteLine($"hairstyle {path}: {scene.World.StrandCount:N0} strands, {scene.World.ParticleCount:N0} particles, {scene.Colliders.Count} collider(s)");
+        return scene;
+    }
+
+    /// <summary>The strands after the run as .hair, OBJ and USD, and front and side pictures.</summary>
+    private static void Export(HairScene scene, string folder)
+    {
+        var curves = HairSim.IO.StrandCurves.FromWorld(scene.World);
+        HairSim.IO.CurveExport.WriteCyHair(Path.Combine(folder, "hair.hair"), curves);
+        HairSim.IO.CurveExport.WriteObj(Path.Combine(folder, "hair.obj"), curves);
+        HairSim.IO.CurveExport.WriteUsda(Path.Combine(folder, "hair.usda"), curves);
+        HairSim.IO.HairstyleFile.Save(scene, Path.Combine(folder, "hair.hairstyle"));
+        foreach (var view in new[] { HairSim.IO.SvgExport.View.Front, HairSim.IO.SvgExport.View.Side })
+            HairSim.IO.SvgExport.Write(Path.Combine(folder, $"{view.ToString().ToLowerInvariant()}.svg"), scene, view,
+                title: $"after the run, {view.ToString().ToLowerInvariant()} view", every: Math.Max(1, scene.World.StrandCount / 2000));
+        Console.WriteLine($"wrote hair.hair, hair.obj, hair.usda, hair.hairstyle, front.svg and side.svg to {folder}");
     }
 }
