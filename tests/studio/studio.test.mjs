@@ -145,6 +145,26 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
     await page.screenshot({ path: path.join(artifacts, 'studio-mesh-head.png') });
   });
 
+  it('cuts with a finger on a touch screen', async () => {
+    // A second page with touch input (Chromium's own touch events, through the DevTools protocol): the same tool
+    // code takes pointer events from a finger as from a mouse.
+    const context = await browser.newContext({ viewport: { width: 1200, height: 800 }, hasTouch: true });
+    const touchPage = await context.newPage();
+    await touchPage.goto(url);
+    await until(() => touchPage.evaluate(() => window.studio?.ready && window.studio.framesReceived > 3), 'the touch page');
+    const before = await state();
+    await touchPage.tap('[data-tool=cut]');
+    const touchUi = pageHelpers(touchPage);
+    const [x0, y] = await touchUi.screen([-0.3, -0.15, 0.1]), [x1] = await touchUi.screen([0.3, -0.15, 0.1]);
+    const cdp = await context.newCDPSession(touchPage);
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: [{ x: x0, y }] });
+    for (let i = 1; i <= 20; i++) await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: [{ x: x0 + (x1 - x0) * i / 20, y }] });
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+    const after = await until(async () => { const t = await state(); return t.undoCount > before.undoCount && t; }, 'the touch cut');
+    assert.ok(after.cutStrands > before.cutStrands, `${before.cutStrands} → ${after.cutStrands} cut strands`);
+    await context.close();
+  });
+
   it('moves and shakes the head from the keyboard', async () => {
     await page.click('[data-tool=view]');
     await page.keyboard.press('ArrowRight');
