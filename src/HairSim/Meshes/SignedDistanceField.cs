@@ -51,18 +51,19 @@ public sealed class SignedDistanceField
         int Nx = (int)nx, Ny = (int)ny, Nz = (int)nz;
         // Each closed part (a head and separately modelled ears overlap) gets its own field; the union is their minimum.
         float[]? d = null;
-        foreach (var part in Parts(mesh))
+        var weld = Weld(mesh.Positions);
+        foreach (var part in Parts(mesh, weld))
         {
-            var f = BakePart(part, origin, cellSize, Nx, Ny, Nz);
+            var f = BakePart(part, weld, origin, cellSize, Nx, Ny, Nz);
             if (d == null) d = f;
             else for (int i = 0; i < d.Length; i++) d[i] = MathF.Min(d[i], f[i]);
         }
         return new SignedDistanceField(origin, cellSize, Nx, Ny, Nz, d!, clock.Elapsed);
     }
 
-    private static float[] BakePart(TriangleMesh mesh, Vector3 origin, float cellSize, int Nx, int Ny, int Nz)
+    private static float[] BakePart(TriangleMesh mesh, int[] weld, Vector3 origin, float cellSize, int Nx, int Ny, int Nz)
     {
-        var pseudo = new PseudoNormals(mesh);
+        var pseudo = new PseudoNormals(mesh, weld);
         var d = new float[Nx * Ny * Nz];
         var sign = new sbyte[d.Length];
         Array.Fill(d, float.MaxValue);
@@ -165,14 +166,12 @@ public sealed class SignedDistanceField
     }
 
     /// <summary>The mesh's connected parts (triangles sharing welded vertices), each a closed shell of its own.</summary>
-    private static List<TriangleMesh> Parts(TriangleMesh mesh)
+    private static List<TriangleMesh> Parts(TriangleMesh mesh, int[] weld)
     {
         var p = mesh.Positions;
         var parent = new int[p.Length];
-        for (int i = 0; i < parent.Length; i++) parent[i] = i;
+        for (int i = 0; i < parent.Length; i++) parent[i] = weld[i];
         int Find(int i) { while (parent[i] != i) i = parent[i] = parent[parent[i]]; return i; }
-        var weld = new Dictionary<Vector3, int>();
-        for (int i = 0; i < p.Length; i++) { if (weld.TryGetValue(p[i], out int j)) parent[Find(i)] = Find(j); else weld[p[i]] = i; }
         var idx = mesh.Indices;
         for (int t = 0; t < idx.Length; t += 3) { parent[Find(idx[t + 1])] = Find(idx[t]); parent[Find(idx[t + 2])] = Find(idx[t]); }
         var groups = new Dictionary<int, List<int>>();
@@ -269,6 +268,15 @@ public sealed class SignedDistanceField
         return a + ab * (vb * denom) + ac * (vc * denom);
     }
 
+    /// <summary>For each vertex, the first vertex at the same position (glTF exports split vertices along UV seams).</summary>
+    private static int[] Weld(Vector3[] p)
+    {
+        var weld = new int[p.Length];
+        var seen = new Dictionary<Vector3, int>();
+        for (int i = 0; i < p.Length; i++) weld[i] = seen.TryGetValue(p[i], out int j) ? j : (seen[p[i]] = i);
+        return weld;
+    }
+
     internal enum Feature { Face, VertexA, VertexB, VertexC, EdgeAB, EdgeBC, EdgeCA }
 
     /// <summary>
@@ -283,14 +291,11 @@ public sealed class SignedDistanceField
         // Keyed by the (low, high) vertex pair: a long key would hash as low ^ high, which collides for most edges of a mesh.
         private readonly Dictionary<(int, int), Vector3> _edge = new();
 
-        public PseudoNormals(TriangleMesh mesh)
+        public PseudoNormals(TriangleMesh mesh, int[] weld)
         {
             _mesh = mesh;
             var p = mesh.Positions;
-            _weld = new int[p.Length];
-            var seen = new Dictionary<Vector3, int>();
-            for (int i = 0; i < p.Length; i++)
-                _weld[i] = seen.TryGetValue(p[i], out int j) ? j : (seen[p[i]] = i);
+            _weld = weld;
             _vertex = new Vector3[p.Length];
             for (int t = 0; t < mesh.TriangleCount; t++)
             {
