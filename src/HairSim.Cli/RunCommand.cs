@@ -8,7 +8,7 @@ namespace HairSim.Cli;
 /// <summary>The main job: build the reference scene, simulate it headless, report timings and error figures.</summary>
 public static class RunCommand
 {
-    public const string Help = "simulate the reference scene (435 × 40 × 16) headless: --seconds 10 --hz 60 --substeps N --path fast|reference --sheets --strands --particles --shake --head mesh.glb|.gltf|.obj|procedural (grow on and collide with a mesh; procedural = the project's own head) --sdf-cell 0.0025 --hairstyle file.hairstyle (run a saved haircut) --export folder (write .hair/.obj/.usda/.hairstyle and front/side SVGs after the run)";
+    public const string Help = "simulate the reference scene (435 × 40 × 16) headless: --seconds 10 --hz 60 --substeps N --path fast|reference --sheets --strands --particles --shake --head mesh.glb|.gltf|.obj|procedural (grow on and collide with a mesh; procedural = the project's own head) --sdf-cell 0.0025 --hairstyle file.hairstyle (run a saved haircut) --export folder (write .hair/.obj/.usda/.hairstyle and front/side SVGs after the run) --paced (frames on the real-time clock, idle in between)";
 
     /// <summary>Hair grown on the file's mesh (all of it is scalp unless its vertex colours mark one in red), colliding with its distance field.</summary>
     private static HairScene GrowOnMesh(string path, float cell, GroomSettings groom, SimulationSettings settings)
@@ -47,6 +47,7 @@ public static class RunCommand
             var p => throw new ArgumentException($"--path must be fast or reference, got '{p}'."),
         };
         bool shake = a.Flag("shake");
+        bool paced = a.Flag("paced");
         string? headFile = a.String("head");
         string? hairstyleFile = a.String("hairstyle");
         string? exportFolder = a.String("export") is { } ef ? a.OutputFolder("export", ef) : null;
@@ -79,8 +80,11 @@ public static class RunCommand
         var times = new double[frames];
         var progress = new Progress("simulating", frames);
         var sw = new Stopwatch();
+        var wall = Stopwatch.StartNew();
         for (int f = 0; f < frames; f++)
         {
+            // --paced: frames start on the real-time clock, idle in between, as a game's 60 Hz loop would be.
+            if (paced) { double due = f * dt - wall.Elapsed.TotalSeconds; if (due > 0) Thread.Sleep(TimeSpan.FromSeconds(due)); }
             var head = shake ? HeadMotion.Shake((f + 1) * dt) : w.Head;
             sw.Restart();
             sim.Step(dt, head);
