@@ -11,6 +11,7 @@ public sealed class HairPipeline
     private readonly Fast.StrandChunkRunner? _chunks;
     private bool _chunkFrame;
     private readonly IHairSystem[] _frameEnd;
+    private readonly IHairSystem[] _frameStart;
     private readonly IHairSystem[] _all;
     private readonly IThreadDispatcher _dispatcher;
     private readonly FrameContext _ctx = new();
@@ -34,6 +35,7 @@ public sealed class HairPipeline
         _substep = systems.FindAll(s => s.Phase == SystemPhase.Substep).ToArray();
         _chunks = Fast.StrandChunkRunner.TryCreate(_substep);
         _frameEnd = systems.FindAll(s => s.Phase == SystemPhase.FrameEnd).ToArray();
+        _frameStart = systems.FindAll(s => s.Phase == SystemPhase.FrameStart).ToArray();
         _dispatcher = dispatcher;
         _substepJob = RunSubstepJob;
         _frameEndJob = RunFrameEndJob;
@@ -95,6 +97,8 @@ public sealed class HairPipeline
         ctx.HeadEnd = headTarget;
         ctx.Teleported = teleported;
         ctx.TeleportDelta = ctx.Teleported ? delta : RigidTransform.Identity;
+        ctx.Scale = _scale;
+        ctx.Dispatcher = _dispatcher;
 
         if (ctx.SubstepHeads.Length < st.Substeps) ctx.SubstepHeads = new RigidTransform[st.Substeps];
         for (int s = 0; s < st.Substeps; s++)
@@ -109,6 +113,9 @@ public sealed class HairPipeline
             for (int c = 0; c < nc; c++)
                 ctx.SubstepColliders[s * nc + c] = colliders[c].ToWorld(ctx.SubstepHeads[s]);
 
+        // Systems that couple strands (volume) see the state the last frame left and change velocities before any substep.
+        for (int k = 0; k < _frameStart.Length; k++)
+            _frameStart[k].Run(_scene, ctx, 0, 0, world.StrandCount);
         if (_substep.Length > 0)
         {
             _chunkFrame = UsesStrandChunks && _chunks!.BeginFrame(ctx);

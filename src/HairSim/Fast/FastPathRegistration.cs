@@ -19,6 +19,7 @@ internal static partial class FastPathRegistration
                 CollideSystem.SystemName => _ => new FastCollideSystem(allowWide),
                 SegmentCollideSystem.SystemName => _ => new FastSegmentCollideSystem(),
                 InterpolateSystem.SystemName => s => new FastInterpolateSystem(s),
+                VolumeSystem.SystemName => _ => new FastVolumeSystem(),
                 _ => null,
             };
             if (fast != null) builder.Replace(f with { CreateFast = fast });

@@ -7,6 +7,11 @@ public enum SystemPhase
     Substep,
     /// <summary>Once per frame after all substeps, over a range of sheets (e.g. render interpolation).</summary>
     FrameEnd,
+    /// <summary>
+    /// Once per frame before the substeps, over the whole world, called on the stepping thread: for systems that couple
+    /// strands (hair volume). Such a system forks its own parallel passes through <see cref="FrameContext.Dispatcher"/>.
+    /// </summary>
+    FrameStart,
 }
 
 /// <summary>A behaviour over the world's data. Systems hold no per-particle state of their own.</summary>
@@ -14,7 +19,7 @@ public interface IHairSystem
 {
     string Name { get; }
     SystemPhase Phase { get; }
-    /// <summary>Runs on strands (Substep) or sheets (FrameEnd) [begin, end). Must not allocate.</summary>
+    /// <summary>Runs on strands (Substep, FrameStart: all of them) or sheets (FrameEnd) [begin, end). Must not allocate.</summary>
     void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end);
 }
 
@@ -32,6 +37,10 @@ public sealed class FrameContext
     public bool Teleported { get; internal set; }
     /// <summary>The rigid jump applied on a teleport frame.</summary>
     public RigidTransform TeleportDelta { get; internal set; } = RigidTransform.Identity;
+    /// <summary>The groom's size the scale-free settings are measured against.</summary>
+    public GroomScale Scale { get; internal set; }
+    /// <summary>The pipeline's dispatcher, for <see cref="SystemPhase.FrameStart"/> systems that fork their own passes.</summary>
+    public IThreadDispatcher Dispatcher { get; internal set; } = SequentialDispatcher.Instance;
 
     internal RigidTransform[] SubstepHeads = new RigidTransform[1];
     internal Collider[] SubstepColliders = [];

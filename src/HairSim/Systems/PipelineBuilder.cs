@@ -2,12 +2,12 @@ namespace HairSim;
 
 /// <summary>
 /// Builds a scene's pipeline from registered system factories, keeping only the systems whose data the
-/// scene has. Order: head follow, shape match, integrate, bend, length, collide, mesh collide, segment collide (substeps), then interpolation.
+/// scene has. Order: volume (once per frame, before the substeps), head follow, shape match, integrate, bend, length, collide, mesh collide, segment collide (substeps), then interpolation.
 /// Other libraries (editing tools, wind, …) add their factories with <see cref="Add"/>.
 /// </summary>
 public sealed class PipelineBuilder
 {
-    public const int OrderHeadFollow = 100, OrderShapeMatch = 200, OrderIntegrate = 300, OrderBend = 350, OrderLength = 400,
+    public const int OrderVolume = 50, OrderHeadFollow = 100, OrderShapeMatch = 200, OrderIntegrate = 300, OrderBend = 350, OrderLength = 400,
         OrderCollide = 500, OrderMeshCollide = 520, OrderSegmentCollide = 550, OrderInterpolate = 1000;
 
     private readonly List<SystemFactory> _factories = new();
@@ -41,6 +41,8 @@ public sealed class PipelineBuilder
     public static PipelineBuilder CreateDefault(bool allowAvx512)
     {
         var b = new PipelineBuilder();
+        b.Add(new SystemFactory(VolumeSystem.SystemName, SystemPhase.FrameStart, OrderVolume,
+            s => s.HasComponent<VolumeSettings>() && s.World.StrandCount > 0, _ => new VolumeSystem()));
         b.Add(new SystemFactory(HeadFollowSystem.SystemName, SystemPhase.Substep, OrderHeadFollow,
             s => s.World.StrandCount > 0, _ => new HeadFollowSystem()));
         b.Add(new SystemFactory(ShapeMatchSystem.SystemName, SystemPhase.Substep, OrderShapeMatch,

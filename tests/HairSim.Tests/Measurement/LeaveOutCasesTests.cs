@@ -10,7 +10,7 @@ public class LeaveOutCasesTests
 {
     private static readonly string[] Core =
     [
-        HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, BendSystem.SystemName,
+        VolumeSystem.SystemName, HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, BendSystem.SystemName,
         LengthSystem.SystemName, CollideSystem.SystemName, HairSim.Meshes.MeshCollideSystem.SystemName, SegmentCollideSystem.SystemName, InterpolateSystem.SystemName,
     ];
 

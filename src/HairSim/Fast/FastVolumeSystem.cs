@@ -1,0 +1,345 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+using System.Runtime.Intrinsics;
+
+namespace HairSim.Fast;
+
+/// <summary>
+/// Hair volume, fast path: the reference <see cref="VolumeSystem"/>'s steps in single precision, in parallel passes
+/// (bounds, splat, reduce, gradient, gather), with node data packed so a corner is one 128- or 256-bit load.
+/// The splat writes into <see cref="Partitions"/> private grids, a fixed number so the sums (and so the results) do not
+/// depend on how many threads run; the reduce pass adds them in order and clears them for the next frame.
+/// </summary>
+internal sealed class FastVolumeSystem : IHairSystem
+{
+    public string Name => VolumeSystem.SystemName;
+    public SystemPhase Phase => SystemPhase.FrameStart;
+
+    /// <summary>Private splat grids (and splat jobs): fixed, so the bits do not depend on the thread count.</summary>
+    public const int Partitions = 4;
+    private const int MaxJobs = 1024;
+
+    private readonly VolumeGrid _grid = new();
+    private readonly RestDensityCache _rest = new();
+    // (ρ, mx, my, mz) per node; every partition is all zeros between frames (the reduce pass clears what it read).
+    private readonly Vector128<float>[][] _splat = new Vector128<float>[Partitions][];
+    private float[] _p = [];
+    // (∂P/∂x, ∂P/∂y, ∂P/∂z, ρ, mx, my, mz, 0) per node, per cell width.
+    private Vector256<float>[] _field = [];
+    private readonly Vector3[] _min = new Vector3[MaxJobs], _max = new Vector3[MaxJobs];
+    // Per particle of the sample strands: the push P, the friction share F and F × the hair's mean velocity there
+    // (zeros where nothing was sampled), so a particle's change is Σ t·(P + F·target − F·v) over its two samples.
+    private float[] _pushX = [], _pushY = [], _pushZ = [], _pullX = [], _pullY = [], _pullZ = [], _share = [];
+    private int _every;
+    private readonly Action<int> _boundsJob, _splatJob, _reduceJob, _gradientJob, _gatherJob;
+
+    // The frame being run (set before the passes fork).
+    private HairWorld _w = null!;
+    private int _jobs, _nodeJobs, _sheetJobs;
+    private float _invTarget, _push, _maxPush, _friction;
+    private bool _inert;
+
+    public FastVolumeSystem()
+    {
+        for (int p = 0; p < Partitions; p++) _splat[p] = [];
+        _boundsJob = BoundsJob; _splatJob = SplatJob; _reduceJob = ReduceJob; _gradientJob = GradientJob; _gatherJob = GatherJob;
+    }
+
+    public VolumeGrid Grid => _grid;
+
+    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
+    {
+        var settings = scene.GetComponent<VolumeSettings>() ?? VolumeSystem.InertSettings;
+        settings.Validate();
+        if (ctx.Teleported) return;
+        var w = scene.World;
+        if (w.StrandCount == 0) return;
+        float cell = settings.CellSize * ctx.Scale.Segment;
+        float rest = _rest.Get(w, cell);
+        if (!(rest > 0f)) return;
+        var dispatcher = ctx.Dispatcher;
+        _w = w;
+        _jobs = Math.Min(Math.Min(MaxJobs, w.StrandCount), dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 4);
+
+        dispatcher.Run(_jobs, _boundsJob);
+        var min = _min[0]; var max = _max[0];
+        for (int j = 1; j < _jobs; j++) { min = Vector3.Min(min, _min[j]); max = Vector3.Max(max, _max[j]); }
+        if (!_grid.Fit(min, max, cell)) return;
+
+        int n = _grid.NodeCount;
+        if (_p.Length < n)
+        {
+            for (int p = 0; p < Partitions; p++) _splat[p] = new Vector128<float>[n];
+            _p = new float[n];
+            _field = new Vector256<float>[n];
+        }
+        _nodeJobs = Math.Min(_grid.Nz, dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 2);
+        _invTarget = (float)(1.0 / (settings.Density * (double)rest));
+        double dt = ctx.Dt;
+        _push = (float)(settings.Stiffness * BendProfile.StandardGravity * dt);
+        _maxPush = (float)(0.5 * _grid.Cell / dt);
+        _friction = (float)(1.0 - Math.Exp(-settings.Friction * dt / ctx.Scale.NaturalTime));
+        _inert = settings.IsInert;
+        _every = settings.SampleEvery;
+        if (_share.Length != w.ParticleCount)
+        {
+            int np = w.ParticleCount;
+            _pushX = new float[np]; _pushY = new float[np]; _pushZ = new float[np];
+            _pullX = new float[np]; _pullY = new float[np]; _pullZ = new float[np]; _share = new float[np];
+        }
+        _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 4);
+
+        dispatcher.Run(Partitions, _splatJob);
+        dispatcher.Run(_nodeJobs, _reduceJob);
+        dispatcher.Run(_nodeJobs, _gradientJob);
+        dispatcher.Run(_sheetJobs, _gatherJob);
+    }
+
+    private (int Begin, int End) Strands(int job, int jobs)
+    {
+        long n = _w.StrandCount;
+        return ((int)(n * job / jobs), (int)(n * (job + 1) / jobs));
+    }
+
+    private (int Begin, int End) Sheets(int job, int jobs)
+    {
+        long n = _w.SheetCount;
+        return ((int)(n * job / jobs), (int)(n * (job + 1) / jobs));
+    }
+
+    private void BoundsJob(int job)
+    {
+        var w = _w;
+        var (begin, end) = Strands(job, _jobs);
+        var inf = Vector256.Create(float.PositiveInfinity);
+        Vector256<float> minX = inf, minY = inf, minZ = inf, maxX = -inf, maxY = -inf, maxZ = -inf;
+        var min = new Vector3(float.PositiveInfinity); var max = new Vector3(float.NegativeInfinity);
+        ref float px = ref w.PosX[0], py = ref w.PosY[0], pz = ref w.PosZ[0];
+        for (int s = begin; s < end; s++)
+        {
+            int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s];
+            for (; i + 8 <= e; i += 8)
+            {
+                var x = Vector256.LoadUnsafe(ref px, (nuint)i); var y = Vector256.LoadUnsafe(ref py, (nuint)i); var z = Vector256.LoadUnsafe(ref pz, (nuint)i);
+                minX = Vector256.Min(minX, x); minY = Vector256.Min(minY, y); minZ = Vector256.Min(minZ, z);
+                maxX = Vector256.Max(maxX, x); maxY = Vector256.Max(maxY, y); maxZ = Vector256.Max(maxZ, z);
+            }
+            for (; i < e; i++)
+            {
+                var p = new Vector3(w.PosX[i], w.PosY[i], w.PosZ[i]);
+                min = Vector3.Min(min, p); max = Vector3.Max(max, p);
+            }
+        }
+        for (int l = 0; l < 8; l++)
+        {
+            min = Vector3.Min(min, new Vector3(minX.GetElement(l), minY.GetElement(l), minZ.GetElement(l)));
+            max = Vector3.Max(max, new Vector3(maxX.GetElement(l), maxY.GetElement(l), maxZ.GetElement(l)));
+        }
+        _min[job] = min; _max[job] = max;
+    }
+
+    private void SplatJob(int partition)
+    {
+        var w = _w;
+        var (sheetBegin, sheetEnd) = Sheets(partition, Partitions);
+        var g = _grid;
+        var origin = g.Origin; float inv = g.InvCell;
+        float hx = g.Nx - 1.001f, hy = g.Ny - 1.001f, hz = g.Nz - 1.001f;
+        int sy = g.Nx, sz = g.Nx * g.Ny;
+        ref var nodes = ref _splat[partition][0];
+        float[] posX = w.PosX, posY = w.PosY, posZ = w.PosZ, velX = w.VelX, velY = w.VelY, velZ = w.VelZ, invMass = w.InvMass;
+        int[] strandFirst = w.StrandFirst, strandCount = w.StrandParticleCount;
+        int every = _every;
+        for (int q = sheetBegin; q < sheetEnd; q++)
+        for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j++)
+        {
+            if (!VolumeSampling.IsSample(j, count, every)) continue;
+            float weight = (float)VolumeSampling.Weight(count, every);
+            int s = first + j;
+            int i = strandFirst[s], e = i + strandCount[s];
+            if ((uint)e > (uint)posX.Length || (uint)e > (uint)velX.Length || (uint)e > (uint)invMass.Length
+                || (uint)e > (uint)posY.Length || (uint)e > (uint)posZ.Length || (uint)e > (uint)velY.Length || (uint)e > (uint)velZ.Length || i < 0)
+                throw new InvalidOperationException("Strand outside the particle arrays.");
+            for (; i < e; i++)
+            {
+                if (Unsafe.Add(ref invMass[0], i) == 0f) continue;
+                float px = Unsafe.Add(ref posX[0], i), py = Unsafe.Add(ref posY[0], i), pz = Unsafe.Add(ref posZ[0], i);
+                float vx = Unsafe.Add(ref velX[0], i), vy = Unsafe.Add(ref velY[0], i), vz = Unsafe.Add(ref velZ[0], i);
+                if (!float.IsFinite(px + py + pz + vx + vy + vz)) continue;
+                int b = Cell(px, py, pz, origin, inv, hx, hy, hz, sy, sz, out float fx, out float fy, out float fz);
+                var value = Vector128.Create(weight, weight * vx, weight * vy, weight * vz);
+                float gx = 1f - fx, gy = 1f - fy, gz = 1f - fz;
+                float w00 = gy * gz, w10 = fy * gz, w01 = gy * fz, w11 = fy * fz;
+                ref var n0 = ref Unsafe.Add(ref nodes, b);
+                Add(ref n0, value, gx * w00); Add(ref Unsafe.Add(ref n0, 1), value, fx * w00);
+                ref var n1 = ref Unsafe.Add(ref n0, sy);
+                Add(ref n1, value, gx * w10); Add(ref Unsafe.Add(ref n1, 1), value, fx * w10);
+                ref var n2 = ref Unsafe.Add(ref n0, sz);
+                Add(ref n2, value, gx * w01); Add(ref Unsafe.Add(ref n2, 1), value, fx * w01);
+                ref var n3 = ref Unsafe.Add(ref n2, sy);
+                Add(ref n3, value, gx * w11); Add(ref Unsafe.Add(ref n3, 1), value, fx * w11);
+            }
+        }
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Add(ref Vector128<float> node, Vector128<float> value, float weight) => node += value * weight;
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static int Cell(float px, float py, float pz, Vector3 origin, float inv, float hx, float hy, float hz, int sy, int sz,
+        out float fx, out float fy, out float fz)
+    {
+        float ux = Clamp((px - origin.X) * inv, hx), uy = Clamp((py - origin.Y) * inv, hy), uz = Clamp((pz - origin.Z) * inv, hz);
+        int ix = (int)ux, iy = (int)uy, iz = (int)uz;
+        fx = ux - ix; fy = uy - iy; fz = uz - iz;
+        return ix + sy * iy + sz * iz;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static float Clamp(float u, float hi) => u >= 0f ? (u <= hi ? u : hi) : 0f;
+
+    private (int Begin, int End) NodeRange(int job)
+    {
+        int slab = _grid.Nx * _grid.Ny;
+        return (slab * (int)((long)_grid.Nz * job / _nodeJobs), slab * (int)((long)_grid.Nz * (job + 1) / _nodeJobs));
+    }
+
+    private void ReduceJob(int job)
+    {
+        var (begin, end) = NodeRange(job);
+        var s0 = _splat[0]; var s1 = _splat[1]; var s2 = _splat[2]; var s3 = _splat[3];
+        float inv = _invTarget;
+        for (int k = begin; k < end; k++)
+        {
+            var sum = ((s0[k] + s1[k]) + s2[k]) + s3[k];
+            s0[k] = default; s1[k] = default; s2[k] = default; s3[k] = default;
+            _p[k] = MathF.Max(0f, sum.GetElement(0) * inv - 1f);
+            // Until the gradient pass overwrites the first three lanes, the field holds the sums in its upper half.
+            _field[k] = Vector256.Create(Vector128<float>.Zero, sum);
+        }
+    }
+
+    private void GradientJob(int job)
+    {
+        var (begin, end) = NodeRange(job);
+        var g = _grid;
+        int nx = g.Nx, ny = g.Ny, nz = g.Nz, sy = nx, sz = nx * ny;
+        var p = _p;
+        for (int k = begin; k < end; k++)
+        {
+            int z = k / sz, r = k - z * sz, y = r / sy, x = r - y * sy;
+            float px1 = x + 1 < nx ? p[k + 1] : 0f, px0 = x > 0 ? p[k - 1] : 0f;
+            float py1 = y + 1 < ny ? p[k + sy] : 0f, py0 = y > 0 ? p[k - sy] : 0f;
+            float pz1 = z + 1 < nz ? p[k + sz] : 0f, pz0 = z > 0 ? p[k - sz] : 0f;
+            var sum = _field[k].GetUpper(); // (ρ, mx, my, mz)
+            _field[k] = Vector256.Create(0.5f * (px1 - px0), 0.5f * (py1 - py0), 0.5f * (pz1 - pz0), sum.GetElement(0),
+                sum.GetElement(1), sum.GetElement(2), sum.GetElement(3), 0f);
+        }
+    }
+
+    private void GatherJob(int job)
+    {
+        var w = _w;
+        var (sheetBegin, sheetEnd) = Sheets(job, _sheetJobs);
+        int every = _every;
+        for (int q = sheetBegin; q < sheetEnd; q++)
+        {
+            int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q];
+            for (int j = 0; j < count; j++)
+                if (VolumeSampling.IsSample(j, count, every)) SampleStrand(first + j);
+            if (_inert) continue;
+            for (int j = 0; j < count; j++)
+            {
+                var (a, b, t) = VolumeSampling.Bracket(j, count, every);
+                Apply(first + j, first + a, first + b, (float)t);
+            }
+        }
+    }
+
+    /// <summary>Strand s takes (1 − t) of sample a's change and t of sample b's, particle by particle (8 at a time where all three strands have them).</summary>
+    private void Apply(int s, int a, int b, float t)
+    {
+        var w = _w;
+        float[] velX = w.VelX, velY = w.VelY, velZ = w.VelZ, invMass = w.InvMass;
+        int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
+        int firstA = w.StrandFirst[a], lastA = w.StrandParticleCount[a] - 1, firstB = w.StrandFirst[b], lastB = w.StrandParticleCount[b] - 1;
+        int whole = Math.Min(n, Math.Min(lastA, lastB) + 1);
+        float ta = 1f - t;
+        int k = 0;
+        if (Vector256.IsHardwareAccelerated)
+        {
+            var vta = Vector256.Create(ta); var vtb = Vector256.Create(t);
+            for (; k + 8 <= whole; k += 8)
+            {
+                int i = first + k, ia = firstA + k, ib = firstB + k;
+                var vx = Load(velX, i); var vy = Load(velY, i); var vz = Load(velZ, i);
+                var fa = vta * Load(_share, ia); var fb = vtb * Load(_share, ib);
+                var free = Vector256.GreaterThan(Load(invMass, i), Vector256<float>.Zero);
+                var dx = vta * (Load(_pushX, ia) + Load(_pullX, ia)) + vtb * (Load(_pushX, ib) + Load(_pullX, ib)) - (fa + fb) * vx;
+                var dy = vta * (Load(_pushY, ia) + Load(_pullY, ia)) + vtb * (Load(_pushY, ib) + Load(_pullY, ib)) - (fa + fb) * vy;
+                var dz = vta * (Load(_pushZ, ia) + Load(_pullZ, ia)) + vtb * (Load(_pushZ, ib) + Load(_pullZ, ib)) - (fa + fb) * vz;
+                (vx + (dx & free)).StoreUnsafe(ref velX[0], (nuint)i);
+                (vy + (dy & free)).StoreUnsafe(ref velY[0], (nuint)i);
+                (vz + (dz & free)).StoreUnsafe(ref velZ[0], (nuint)i);
+            }
+        }
+        for (; k < n; k++)
+        {
+            int i = first + k;
+            if (invMass[i] == 0f) continue;
+            int ia = firstA + Math.Min(k, lastA), ib = firstB + Math.Min(k, lastB);
+            float vx = velX[i], vy = velY[i], vz = velZ[i];
+            float fab = ta * _share[ia] + t * _share[ib];
+            velX[i] = vx + (ta * (_pushX[ia] + _pullX[ia]) + t * (_pushX[ib] + _pullX[ib]) - fab * vx);
+            velY[i] = vy + (ta * (_pushY[ia] + _pullY[ia]) + t * (_pushY[ib] + _pullY[ib]) - fab * vy);
+            velZ[i] = vz + (ta * (_pushZ[ia] + _pullZ[ia]) + t * (_pushZ[ib] + _pullZ[ib]) - fab * vz);
+        }
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector256<float> Load(float[] a, int i) => Vector256.LoadUnsafe(ref a[0], (nuint)i);
+
+    /// <summary>The push, friction share and pull at every particle of sample strand s, into the per-particle buffers.</summary>
+    private void SampleStrand(int s)
+    {
+        var w = _w;
+        var g = _grid;
+        var origin = g.Origin; float inv = g.InvCell;
+        float hx = g.Nx - 1.001f, hy = g.Ny - 1.001f, hz = g.Nz - 1.001f;
+        int sy = g.Nx, sz = g.Nx * g.Ny;
+        ref var field = ref _field[0];
+        float push = _push, maxPush = _maxPush, friction = _friction;
+        float[] posX = w.PosX, posY = w.PosY, posZ = w.PosZ, velX = w.VelX, velY = w.VelY, velZ = w.VelZ, invMass = w.InvMass;
+        float[] pushX = _pushX, pushY = _pushY, pushZ = _pushZ, pullX = _pullX, pullY = _pullY, pullZ = _pullZ, share = _share;
+        for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
+        {
+            pushX[i] = pushY[i] = pushZ[i] = pullX[i] = pullY[i] = pullZ[i] = share[i] = 0f;
+            if (invMass[i] == 0f) continue;
+            float px = posX[i], py = posY[i], pz = posZ[i];
+            if (!float.IsFinite(px + py + pz + velX[i] + velY[i] + velZ[i])) continue;
+            int b = Cell(px, py, pz, origin, inv, hx, hy, hz, sy, sz, out float fx, out float fy, out float fz);
+            float gx = 1f - fx, gy = 1f - fy, gz = 1f - fz;
+            float w00 = gy * gz, w10 = fy * gz, w01 = gy * fz, w11 = fy * fz;
+            ref var n0 = ref Unsafe.Add(ref field, b);
+            ref var n1 = ref Unsafe.Add(ref n0, sy);
+            ref var n2 = ref Unsafe.Add(ref n0, sz);
+            ref var n3 = ref Unsafe.Add(ref n2, sy);
+            var acc = (n0 * (gx * w00) + Unsafe.Add(ref n0, 1) * (fx * w00))
+                    + (n1 * (gx * w10) + Unsafe.Add(ref n1, 1) * (fx * w10))
+                    + ((n2 * (gx * w01) + Unsafe.Add(ref n2, 1) * (fx * w01))
+                    + (n3 * (gx * w11) + Unsafe.Add(ref n3, 1) * (fx * w11)));
+            var lo = acc.GetLower(); var hi = acc.GetUpper();
+            float dvx = -push * lo.GetElement(0), dvy = -push * lo.GetElement(1), dvz = -push * lo.GetElement(2);
+            float dv2 = dvx * dvx + dvy * dvy + dvz * dvz;
+            if (dv2 > maxPush * maxPush) { float k = maxPush / MathF.Sqrt(dv2); dvx *= k; dvy *= k; dvz *= k; }
+            pushX[i] = dvx; pushY[i] = dvy; pushZ[i] = dvz;
+            float rho = lo.GetElement(3);
+            if (rho > 1e-12f)
+            {
+                float pull = friction / rho;
+                pullX[i] = hi.GetElement(0) * pull; pullY[i] = hi.GetElement(1) * pull; pullZ[i] = hi.GetElement(2) * pull;
+                share[i] = friction;
+            }
+        }
+    }
+}

@@ -1,0 +1,206 @@
+using System.Numerics;
+
+namespace HairSim;
+
+/// <summary>
+/// Hair volume (<see cref="VolumeSettings"/>), once per frame before the substeps, reference implementation (scalar,
+/// double precision, one thread):
+/// 1. fit a grid to the live particles (cells of <see cref="VolumeSettings.CellSize"/> mean segments);
+/// 2. splat every free particle's weight and momentum to its cell's eight nodes (trilinear): density ρ and momentum m;
+/// 3. at each node, the over-density P = max(0, ρ / ρ₀ − 1), with ρ₀ the target density (a multiple of the rest pose's);
+///    its gradient by central differences;
+/// 4. at each particle, interpolate the gradient, ρ and m (trilinear), then change the velocity by
+///    a pressure push −Stiffness·1 g·∇P·dt (at most half a cell per frame) and a friction pull f·(m/ρ − v) towards the
+///    hair's local mean velocity, f = 1 − e^(−Friction·dt/T₀) with T₀ = √(L / 1 g).
+/// The substeps that follow carry the changed velocities through the strand constraints. Skipped on teleport frames.
+/// </summary>
+public sealed class VolumeSystem : IHairSystem
+{
+    public const string SystemName = "Volume";
+    public string Name => SystemName;
+    public SystemPhase Phase => SystemPhase.FrameStart;
+
+    /// <summary>What a pipeline that keeps every system runs when the scene has no volume: all the work, no change.</summary>
+    internal static readonly VolumeSettings InertSettings = VolumeSettings.Inert;
+
+    private readonly VolumeGrid _grid = new();
+    private readonly RestDensityCache _rest = new();
+    private double[] _rho = [], _mx = [], _my = [], _mz = [], _p = [], _gx = [], _gy = [], _gz = [];
+
+    public VolumeGrid Grid => _grid;
+
+    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
+    {
+        var settings = scene.GetComponent<VolumeSettings>() ?? InertSettings;
+        settings.Validate();
+        if (ctx.Teleported) return;
+        var w = scene.World;
+        float cell = settings.CellSize * ctx.Scale.Segment;
+        float rest = _rest.Get(w, cell);
+        if (!(rest > 0f)) return;
+        if (!FitToLiveParticles(w, _grid, cell)) return;
+        int n = _grid.NodeCount;
+        if (_rho.Length < n)
+        {
+            _rho = new double[n]; _mx = new double[n]; _my = new double[n]; _mz = new double[n];
+            _p = new double[n]; _gx = new double[n]; _gy = new double[n]; _gz = new double[n];
+        }
+        Array.Clear(_rho, 0, n); Array.Clear(_mx, 0, n); Array.Clear(_my, 0, n); Array.Clear(_mz, 0, n);
+        int sy = _grid.Nx, sz = _grid.Nx * _grid.Ny;
+
+        for (int q = 0; q < w.SheetCount; q++)
+        {
+            int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q], every = settings.SampleEvery;
+            double weight = VolumeSampling.Weight(count, every);
+            for (int j = 0; j < count; j++)
+            {
+                if (!VolumeSampling.IsSample(j, count, every)) continue;
+                int s = first + j;
+                for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
+                {
+                    if (w.InvMass[i] == 0f) continue;
+                    int b = _grid.Locate(w.PosX[i], w.PosY[i], w.PosZ[i], out float fx, out float fy, out float fz);
+                    if (b < 0 || !float.IsFinite(w.VelX[i] + w.VelY[i] + w.VelZ[i])) continue;
+                    for (int c = 0; c < 8; c++)
+                    {
+                        int node = b + (c & 1) + ((c & 2) != 0 ? sy : 0) + ((c & 4) != 0 ? sz : 0);
+                        double wt = weight * VolumeGrid.Weight(c, fx, fy, fz);
+                        _rho[node] += wt; _mx[node] += wt * w.VelX[i]; _my[node] += wt * w.VelY[i]; _mz[node] += wt * w.VelZ[i];
+                    }
+                }
+            }
+        }
+
+        double invTarget = 1.0 / (settings.Density * (double)rest);
+        for (int k = 0; k < n; k++) _p[k] = Math.Max(0.0, _rho[k] * invTarget - 1.0);
+        for (int z = 0; z < _grid.Nz; z++)
+            for (int y = 0; y < _grid.Ny; y++)
+                for (int x = 0; x < _grid.Nx; x++)
+                {
+                    int k = x + sy * y + sz * z;
+                    _gx[k] = 0.5 * (P(x + 1, y, z) - P(x - 1, y, z));
+                    _gy[k] = 0.5 * (P(x, y + 1, z) - P(x, y - 1, z));
+                    _gz[k] = 0.5 * (P(x, y, z + 1) - P(x, y, z - 1));
+                }
+
+        double dt = ctx.Dt;
+        double push = settings.Stiffness * BendProfile.StandardGravity * dt;
+        double maxPush = 0.5 * _grid.Cell / dt;
+        double f = 1.0 - Math.Exp(-settings.Friction * dt / ctx.Scale.NaturalTime);
+        bool inert = settings.IsInert;
+        for (int q = 0; q < w.SheetCount; q++)
+        {
+            int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q], every = settings.SampleEvery;
+            for (int j = 0; j < count; j++)
+            {
+                var (a, b, t) = VolumeSampling.Bracket(j, count, every);
+                int s = first + j, sa = first + a, sb = first + b;
+                for (int k = 0; k < w.StrandParticleCount[s]; k++)
+                {
+                    int i = w.StrandFirst[s] + k;
+                    if (w.InvMass[i] == 0f || !float.IsFinite(w.VelX[i] + w.VelY[i] + w.VelZ[i])) continue;
+                    // Each sample gives a push and (where it found hair) a friction pull f·(target − v); a sample with
+                    // nothing to give (a pinned or broken particle) gives zero, so strands near it are pushed less.
+                    Evaluate(w, sa, k, out var pushA, out var targetA, out double fa);
+                    Evaluate(w, sb, k, out var pushB, out var targetB, out double fb);
+                    var v = new Vec3d(w.VelX[i], w.VelY[i], w.VelZ[i]);
+                    var dv = (1.0 - t) * (pushA + fa * (targetA - v)) + t * (pushB + fb * (targetB - v));
+                    if (inert) continue;
+                    w.VelX[i] = (float)(w.VelX[i] + dv.X); w.VelY[i] = (float)(w.VelY[i] + dv.Y); w.VelZ[i] = (float)(w.VelZ[i] + dv.Z);
+                }
+            }
+        }
+
+        // The push, the hair's mean velocity and the friction share at particle k of sample strand s (its last particle
+        // if s is shorter); zeros where there is no free, finite particle to sample.
+        void Evaluate(HairWorld w, int s, int k, out Vec3d pushOut, out Vec3d target, out double friction)
+        {
+            pushOut = default; target = default; friction = 0;
+            int n = w.StrandParticleCount[s];
+            int i = w.StrandFirst[s] + Math.Min(k, n - 1);
+            if (w.InvMass[i] == 0f || !float.IsFinite(w.VelX[i] + w.VelY[i] + w.VelZ[i])) return;
+            int b = _grid.Locate(w.PosX[i], w.PosY[i], w.PosZ[i], out float fx, out float fy, out float fz);
+            if (b < 0) return;
+            double gx = 0, gy = 0, gz = 0, rho = 0, mx = 0, my = 0, mz = 0;
+            for (int c = 0; c < 8; c++)
+            {
+                int node = b + (c & 1) + ((c & 2) != 0 ? sy : 0) + ((c & 4) != 0 ? sz : 0);
+                double wt = VolumeGrid.Weight(c, fx, fy, fz);
+                gx += wt * _gx[node]; gy += wt * _gy[node]; gz += wt * _gz[node];
+                rho += wt * _rho[node]; mx += wt * _mx[node]; my += wt * _my[node]; mz += wt * _mz[node];
+            }
+            pushOut = new Vec3d(-push * gx, -push * gy, -push * gz);
+            double len = pushOut.Length;
+            if (len > maxPush) pushOut *= maxPush / len;
+            if (rho > 1e-12) { target = new Vec3d(mx / rho, my / rho, mz / rho); friction = f; }
+        }
+
+        double P(int x, int y, int z) =>
+            (uint)x < (uint)_grid.Nx && (uint)y < (uint)_grid.Ny && (uint)z < (uint)_grid.Nz ? _p[x + sy * y + sz * z] : 0.0;
+    }
+
+    /// <summary>Fits the grid to the live particles' bounds (pinned roots included: they lie inside the hair anyway).</summary>
+    internal static bool FitToLiveParticles(HairWorld w, VolumeGrid grid, float cell)
+    {
+        var min = new Vector3(float.MaxValue); var max = new Vector3(float.MinValue);
+        for (int s = 0; s < w.StrandCount; s++)
+            for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
+            {
+                var p = new Vector3(w.PosX[i], w.PosY[i], w.PosZ[i]);
+                if (!float.IsFinite(p.X + p.Y + p.Z)) continue;
+                min = Vector3.Min(min, p); max = Vector3.Max(max, p);
+            }
+        return grid.Fit(min, max, cell);
+    }
+}
+
+/// <summary>Which strands of a sheet fill the grid (<see cref="VolumeSettings.SampleEvery"/>), and how the others take their pushes.</summary>
+public static class VolumeSampling
+{
+    /// <summary>Strand j of a sheet of n is a sample: every <paramref name="every"/>-th, and the last.</summary>
+    public static bool IsSample(int j, int n, int every) => j % every == 0 || j == n - 1;
+
+    /// <summary>How many strands each sample of a sheet of n stands for (n over the number of samples).</summary>
+    public static double Weight(int n, int every)
+    {
+        int samples = (n - 1) / every + 1 + ((n - 1) % every != 0 ? 1 : 0);
+        return (double)n / samples;
+    }
+
+    /// <summary>The samples around strand j (A ≤ j ≤ B) and j's place between them (0 at A, 1 at B).</summary>
+    public static (int A, int B, double T) Bracket(int j, int n, int every)
+    {
+        int a = j / every * every;
+        if (a == j) return (a, a, 0.0);
+        int b = Math.Min(a + every, n - 1);
+        return (a, b, (double)(j - a) / (b - a));
+    }
+}
+
+/// <summary>A double-precision vector for the reference path.</summary>
+internal readonly record struct Vec3d(double X, double Y, double Z)
+{
+    public double Length => Math.Sqrt(X * X + Y * Y + Z * Z);
+    public static Vec3d operator +(Vec3d a, Vec3d b) => new(a.X + b.X, a.Y + b.Y, a.Z + b.Z);
+    public static Vec3d operator -(Vec3d a, Vec3d b) => new(a.X - b.X, a.Y - b.Y, a.Z - b.Z);
+    public static Vec3d operator *(double k, Vec3d a) => new(k * a.X, k * a.Y, k * a.Z);
+    public static Vec3d operator *(Vec3d a, double k) => new(k * a.X, k * a.Y, k * a.Z);
+}
+
+/// <summary>The rest pose's density (<see cref="VolumeGrid.RestDensity"/>), recomputed only after an edit or a change of cell size.</summary>
+internal sealed class RestDensityCache
+{
+    private HairWorld? _world;
+    private int _stamp;
+    private float _cell, _density;
+
+    public float Get(HairWorld w, float cell)
+    {
+        if (!ReferenceEquals(w, _world) || w.EditStamp != _stamp || cell != _cell)
+        {
+            _density = VolumeGrid.RestDensity(w, cell);
+            _world = w; _stamp = w.EditStamp; _cell = cell;
+        }
+        return _density;
+    }
+}

@@ -1,0 +1,200 @@
+using System.Numerics;
+using HairSim.Measurement;
+using Xunit;
+
+namespace HairSim.Tests.Core;
+
+/// <summary>The hair volume system (<see cref="VolumeSettings"/>, <see cref="VolumeSystem"/> and its fast twin).</summary>
+public class VolumeTests
+{
+    private static HairScene Groom(SolverPath path, VolumeSettings? volume = null, BendModel bend = BendModel.Limp)
+    {
+        var scene = GroomBuilder.BuildScene(new GroomSettings { SheetCount = 24, StrandsPerSheet = 9, ParticlesPerStrand = 12, StrandLength = 0.2f },
+            new SimulationSettings { Path = path, Bend = bend });
+        if (volume != null) scene.SetComponent(volume);
+        return scene;
+    }
+
+    /// <summary>A pipeline of the volume system alone (nothing else moves), on the scene's path.</summary>
+    private static HairSimulation VolumeOnly(HairScene scene)
+    {
+        var factory = PipelineBuilder.CreateDefault().Factories.Single(f => f.Name == VolumeSystem.SystemName);
+        return new HairSimulation(scene, new PipelineBuilder().Add(factory with { IsNeeded = _ => true }));
+    }
+
+    [Fact]
+    public void The_pipeline_holds_the_volume_system_only_when_the_scene_asks_for_it()
+    {
+        var scene = Groom(SolverPath.Fast);
+        var sim = new HairSimulation(scene);
+        sim.Step(1f / 60);
+        Assert.DoesNotContain(VolumeSystem.SystemName, sim.Pipeline.SystemNames);
+        scene.SetComponent(new VolumeSettings());
+        sim.Step(1f / 60);
+        Assert.Equal(VolumeSystem.SystemName, sim.Pipeline.SystemNames[0]); // first: once per frame, before the substeps
+        Assert.Equal(SystemPhase.FrameStart, sim.Pipeline.Systems[0].Phase);
+        scene.RemoveComponent<VolumeSettings>();
+        sim.Step(1f / 60);
+        Assert.DoesNotContain(VolumeSystem.SystemName, sim.Pipeline.SystemNames);
+    }
+
+    [Fact]
+    public void Friction_relaxes_opposite_motions_of_coinciding_strands_by_the_analytic_share()
+    {
+        foreach (var path in new[] { SolverPath.Reference, SolverPath.Fast })
+        {
+            // Two strands in the same place moving in opposite directions: the hair's mean velocity there is zero, so
+            // each keeps e^(−Friction·dt/T₀) of its velocity.
+            var w = new HairWorld(1, 2, 8);
+            var pts = new Vector3[8];
+            for (int k = 0; k < 8; k++) pts[k] = new Vector3(0.03f * k, 0f, 0f);
+            w.SetStrand(0, pts, pinned: 1); w.SetStrand(1, pts, pinned: 1);
+            for (int k = 1; k < 8; k++) { w.VelZ[k] = 0.5f; w.VelZ[8 + k] = -0.5f; }
+            var volume = new VolumeSettings { Stiffness = 0f, Friction = 3f, SampleEvery = 1 };
+            var scene = new HairScene(w, new SimulationSettings { Path = path });
+            scene.SetComponent(volume);
+            var sim = VolumeOnly(scene);
+            float dt = 1f / 60;
+            sim.Step(dt);
+            double natural = GroomScale.Of(w).NaturalTime;
+            double keep = Math.Exp(-3.0 * dt / natural);
+            for (int k = 1; k < 8; k++)
+            {
+                Assert.Equal(0.5 * keep, w.VelZ[k], 4);
+                Assert.Equal(-0.5 * keep, w.VelZ[8 + k], 4);
+                Assert.Equal(0f, w.VelX[k]); Assert.Equal(0f, w.VelY[k]);
+            }
+            Assert.Equal(0f, w.VelZ[0]); // pinned roots are left alone
+        }
+    }
+
+    [Fact]
+    public void Packed_hair_is_pushed_outward_harder_than_hair_as_grown()
+    {
+        foreach (var path in new[] { SolverPath.Reference, SolverPath.Fast })
+        {
+            var scene = Groom(path, new VolumeSettings { Friction = 0f });
+            var w = scene.World;
+            var sim = VolumeOnly(scene);
+            sim.Step(1f / 60);
+            // As grown, the hair is at its rest density on average (half of it above the median, so it is pushed too).
+            double restPush = 0;
+            for (int i = 0; i < w.ParticleCount; i++) restPush += w.GetVelocity(i).Length();
+            for (int i = 0; i < w.ParticleCount; i++) w.SetVelocity(i, Vector3.Zero);
+            // Pack every strand's free particles to 40 % of their distance from the hair's centre.
+            var centre = Vector3.Zero; int free = 0;
+            for (int i = 0; i < w.ParticleCount; i++) if (w.InvMass[i] > 0f) { centre += w.GetPosition(i); free++; }
+            centre /= free;
+            for (int i = 0; i < w.ParticleCount; i++)
+                if (w.InvMass[i] > 0f) w.SetPosition(i, centre + 0.4f * (w.GetPosition(i) - centre));
+            sim.Step(1f / 60);
+            double packedPush = 0; int outward = 0, moved = 0;
+            for (int i = 0; i < w.ParticleCount; i++)
+            {
+                if (w.InvMass[i] == 0f) continue;
+                var v = w.GetVelocity(i);
+                packedPush += v.Length();
+                if (v.Length() > 1e-6f) { moved++; if (Vector3.Dot(v, w.GetPosition(i) - centre) > 0f) outward++; }
+            }
+            Assert.True(packedPush > 1.3 * restPush, $"{path}: packed push {packedPush} vs rest {restPush}");
+            Assert.True(outward > 0.8 * moved, $"{path}: {outward} of {moved} pushed outward");
+        }
+    }
+
+    [Fact]
+    public void The_fast_path_gives_the_reference_path_s_velocity_changes()
+    {
+        // The same state (a limp groom that has fallen and is swinging) through both implementations, one frame.
+        var source = Groom(SolverPath.Reference);
+        var run = new HairSimulation(source);
+        for (int f = 1; f <= 40; f++) run.Step(1f / 60, HeadMotion.Shake(f / 60f));
+        var volume = new VolumeSettings();
+        var results = new List<float[]>();
+        foreach (var path in new[] { SolverPath.Reference, SolverPath.Fast })
+        {
+            var scene = Groom(path, volume);
+            foreach (var (to, from) in scene.World.Buffers().Zip(source.World.Buffers())) from.CopyTo(to, 0);
+            var before = (float[])scene.World.VelX.Clone();
+            VolumeOnly(scene).Step(1f / 60);
+            var w = scene.World;
+            var dv = new float[3 * w.ParticleCount];
+            for (int i = 0; i < w.ParticleCount; i++)
+            {
+                dv[3 * i] = w.VelX[i] - source.World.VelX[i]; dv[3 * i + 1] = w.VelY[i] - source.World.VelY[i]; dv[3 * i + 2] = w.VelZ[i] - source.World.VelZ[i];
+            }
+            results.Add(dv);
+        }
+        float largest = results[0].Max(MathF.Abs);
+        Assert.True(largest > 1e-3f, $"the frame changes velocities ({largest})");
+        float worst = 0f;
+        for (int i = 0; i < results[0].Length; i++) worst = MathF.Max(worst, MathF.Abs(results[0][i] - results[1][i]));
+        Assert.True(worst <= 1e-3f * largest + 1e-6f, $"fast differs from reference by {worst} (largest change {largest})");
+    }
+
+    [Fact]
+    public void The_fast_path_does_not_depend_on_the_thread_count()
+    {
+        float[]? first = null;
+        foreach (int threads in new[] { 1, 2, 3 })
+        {
+            using var d = new ParallelDispatcher(threads);
+            var scene = Groom(SolverPath.Fast, new VolumeSettings());
+            var sim = new HairSimulation(scene, dispatcher: d);
+            for (int f = 1; f <= 30; f++) sim.Step(1f / 60, HeadMotion.Shake(f / 60f));
+            var bits = scene.World.Buffers().SelectMany(b => b).ToArray();
+            if (first == null) first = bits; else Assert.Equal(first, bits);
+        }
+    }
+
+    [Fact]
+    public void Bad_volume_settings_are_refused_before_anything_moves()
+    {
+        foreach (var path in new[] { SolverPath.Reference, SolverPath.Fast })
+        foreach (var bad in new Action<VolumeSettings>[]
+        {
+            v => v.Stiffness = float.NaN, v => v.Friction = -1f, v => v.Density = 0f, v => v.CellSize = float.PositiveInfinity, v => v.SampleEvery = 0,
+        })
+        {
+            var volume = new VolumeSettings();
+            var scene = Groom(path, volume);
+            var sim = new HairSimulation(scene);
+            sim.Step(1f / 60);
+            bad(volume);
+            var before = scene.World.Buffers().Select(b => (float[])b.Clone()).ToArray();
+            var error = Assert.Throws<ArgumentOutOfRangeException>(() => sim.Step(1f / 60));
+            Assert.StartsWith("Volume ", error.Message);
+            Assert.Equal(before, scene.World.Buffers());
+        }
+    }
+
+    [Fact]
+    public void Extreme_settings_stay_finite_at_every_scale_and_frame_rate()
+    {
+        foreach (float scale in new[] { 0.04f, 1f, 40f })
+        foreach (int hz in new[] { 30, 240 })
+        foreach (var volume in new[]
+        {
+            new VolumeSettings { Stiffness = 1000f, Friction = 1000f, Density = 0.05f },
+            new VolumeSettings { Stiffness = 1000f, Friction = 0f, Density = 0.05f, CellSize = 0.1f, SampleEvery = 1 },
+        })
+        {
+            var r = CrossingSheets.Run(volume, SolverPath.Fast, hz, scale: scale);
+            Assert.Equal(0, r.NonFinite);
+        }
+    }
+
+    [Fact]
+    public void A_sheet_dropped_on_a_crossing_sheet_sinks_into_it_without_volume()
+    {
+        // The control for the figures in docs/volume.md: without hair–hair interaction the upper sheet ends at the lower
+        // sheet's height, below it at a large share of the crossings; with the volume, the sheets are pushed apart (most
+        // crossings disappear) and fewer of the remaining ones have the upper sheet below.
+        var off = CrossingSheets.Run(null, SolverPath.Fast, 60);
+        Assert.Equal(400, off.Crossings);
+        Assert.InRange(off.SunkShare, 0.3, 0.7);
+        Assert.InRange(Math.Abs(off.MeanGap), 0, 1e-3);
+        var on = CrossingSheets.Run(new VolumeSettings(), SolverPath.Fast, 60);
+        Assert.True(on.Sunk < 0.1 * off.Sunk, $"with volume {on.Sunk} of {on.Crossings} crossings sank, without {off.Sunk} of {off.Crossings}");
+        Assert.Equal(0, on.NonFinite);
+    }
+}
