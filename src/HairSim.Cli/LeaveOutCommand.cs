@@ -160,7 +160,8 @@ public static class LeaveOutCommand
     private const string Method = """
         Each scene is the reference groom (435 sheets × 40 strands × 16 particles, default settings: the rest-shape bend
         model with its lengths kept in the same sweep, 4 substeps, 60 Hz) with the head shaking (±40° at 1.5 Hz), minus
-        what its row takes away.
+        what its row takes away (the last row adds hair volume instead: its "lean vs game character" is what the volume
+        system costs when a scene asks for it; every other lean pipeline leaves it out).
         It is simulated twice:
         - **lean**: the default pipeline builder, which keeps only the systems whose data the scene has
           (`PipelineBuilder`, listed by `HairPipeline.SystemNames`);
@@ -168,7 +169,8 @@ public static class LeaveOutCommand
           (`LeaveOutCase.KeepEverything`), and render strands computed that nothing reads. A kept system still does
           its work: the source's shape matching (α = 0 outside its own model) computes every goal and moves nothing;
           the bend sweep under another bend model, the length pass whose work the bend sweep already did, and the
-          collide system with no collider return at once; interpolation fills render strands.
+          collide system with no collider return at once; interpolation fills render strands; the volume system builds
+          its whole grid and every push with zero stiffness and friction, and changes nothing.
 
         Both give the same particle bits (`LeaveOutCasesTests`, every case, both solver paths), so the difference in
         time is what leaving out saves, and nothing else changes. All simulations of one thread count are stepped in

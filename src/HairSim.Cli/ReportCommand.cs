@@ -114,24 +114,35 @@ public static class ReportCommand
     /// </summary>
     private static void VolumeSection(StringBuilder md)
     {
-        md.Append("\n## Hair volume (no hair–hair interaction yet)\n\n");
-        md.Append("The reference scene under three bend models: the outer layer's mean height above the crown (`HairVolume.OuterLayerThickness` with directions more than 0.5 rad above the head's equator, binned 24 × 8; the farthest particle above the head ellipsoid in each bin, averaged). Strands do not push on one another, so what keeps volume is only each strand's own shape: the default rest-shape model holds the groom's lift; the source's triples and limp hair sink towards the scalp. This is the baseline a volume solver is measured against.\n\n");
-        md.Append("| bend model | as grown (mm) | after 2 s still | after a 3 s head shake and 1 s still |\n|---|---:|---:|---:|\n");
+        md.Append("\n## Hair volume\n\n");
+        md.Append("The reference scene under three bend models, without and with hair volume (`VolumeSettings` defaults, docs/volume.md): the outer layer's mean height above the crown (`HairVolume.OuterLayerThickness` with directions more than 0.5 rad above the head's equator, binned 24 × 8; the farthest particle above the head ellipsoid in each bin, averaged). Without volume strands do not push on one another, so what keeps volume is only each strand's own shape: the default rest-shape model holds the groom's lift; the source's triples and limp hair sink towards the scalp.\n\n");
+        md.Append("| bend model | volume | as grown (mm) | after 2 s still | after a 3 s head shake and 1 s still |\n|---|---|---:|---:|---:|\n");
         using var threads = ThreadDispatchers.CreateDefault();
         foreach (var bend in new[] { BendModel.RestShape, BendModel.SourceTriples, BendModel.Limp })
-        {
-            var g = GroomSettings.Reference();
-            var scene = GroomBuilder.BuildScene(g, new SimulationSettings { Bend = bend });
-            var sim = new HairSimulation(scene, dispatcher: threads);
-            double Thickness() => HairVolume.OuterLayerThickness(scene.World, g.HeadCenter, g.HeadRadii, 0.5f);
-            double grown = Thickness();
-            for (int f = 0; f < 120; f++) sim.Step(1f / 60f);
-            double settled = Thickness();
-            for (int f = 1; f <= 180; f++) sim.Step(1f / 60f, HeadMotion.Shake(f / 60f));
-            for (int f = 0; f < 60; f++) sim.Step(1f / 60f, RigidTransform.Identity);
-            double shaken = Thickness();
-            md.Append(F($"| {bend} | {grown * 1000:F1} | {settled * 1000:F1} ({settled / grown * 100:F0} %) | {shaken * 1000:F1} ({shaken / grown * 100:F0} %) |\n"));
-        }
+            foreach (bool volume in new[] { false, true })
+            {
+                var g = GroomSettings.Reference();
+                var scene = GroomBuilder.BuildScene(g, new SimulationSettings { Bend = bend });
+                if (volume) scene.SetComponent(new VolumeSettings());
+                var sim = new HairSimulation(scene, dispatcher: threads);
+                double Thickness() => HairVolume.OuterLayerThickness(scene.World, g.HeadCenter, g.HeadRadii, 0.5f);
+                double grown = Thickness();
+                for (int f = 0; f < 120; f++) sim.Step(1f / 60f);
+                double settled = Thickness();
+                for (int f = 1; f <= 180; f++) sim.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+                for (int f = 0; f < 60; f++) sim.Step(1f / 60f, RigidTransform.Identity);
+                double shaken = Thickness();
+                md.Append(F($"| {bend} | {(volume ? "on" : "off")} | {grown * 1000:F1} | {settled * 1000:F1} ({settled / grown * 100:F0} %) | {shaken * 1000:F1} ({shaken / grown * 100:F0} %) |\n"));
+            }
+        md.Append("\nTwo crossing sheets (`CrossingSheets`: 20 + 20 limp strands of 16 particles; sheet B falls from 12 % of the strand length onto sheet A lying on a floor, 3 natural seconds, Froude-scaled): of the 400 places where a strand of B crosses a strand of A, how many are left after settling, and at how many B ended at or below A (passed into or through A's layer). Fast path.\n\n");
+        md.Append("| strand length | frame rate | volume off: B at or below A | volume on: crossings left | volume on: B at or below A |\n|---|---:|---:|---:|---:|\n");
+        foreach (float scale in new[] { 0.04f, 1f, 40f })
+            foreach (int hz in new[] { 30, 60, 240 })
+            {
+                var off = CrossingSheets.Run(null, SolverPath.Fast, hz, scale: scale, dispatcher: threads);
+                var on = CrossingSheets.Run(new VolumeSettings(), SolverPath.Fast, hz, scale: scale, dispatcher: threads);
+                md.Append(F($"| {0.25 * scale * 100:0.##} cm | {hz} Hz | {off.Sunk} of {off.Crossings} | {on.Crossings} | {on.Sunk} |\n"));
+            }
     }
 
     private static string Group(SolverConfiguration c) => c.Bend switch

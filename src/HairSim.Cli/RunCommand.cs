@@ -8,7 +8,7 @@ namespace HairSim.Cli;
 /// <summary>The main job: build the reference scene, simulate it headless, report timings and error figures.</summary>
 public static class RunCommand
 {
-    public const string Help = "simulate the reference scene (435 × 40 × 16) headless: --seconds 10 --hz 60 --substeps N --path fast|reference --sheets --strands --particles --shake --head mesh.glb|.gltf|.obj|procedural (grow on and collide with a mesh; procedural = the project's own head) --sdf-cell 0.0025 --hairstyle file.hairstyle (run a saved haircut) --export folder (write .hair/.obj/.usda/.hairstyle and front/side SVGs after the run) --paced (frames on the real-time clock, idle in between)";
+    public const string Help = "simulate the reference scene (435 × 40 × 16) headless: --seconds 10 --hz 60 --substeps N --path fast|reference --sheets --strands --particles --shake --head mesh.glb|.gltf|.obj|procedural (grow on and collide with a mesh; procedural = the project's own head) --sdf-cell 0.0025 --hairstyle file.hairstyle (run a saved haircut) --export folder (write .hair/.obj/.usda/.hairstyle and front/side SVGs after the run) --paced (frames on the real-time clock, idle in between) --volume (hair volume: strands push apart and drag one another, docs/volume.md) --bend rest|triples|limp";
 
     /// <summary>Hair grown on the file's mesh (all of it is scalp unless its vertex colours mark one in red), colliding with its distance field.</summary>
     private static HairScene GrowOnMesh(string path, float cell, GroomSettings groom, SimulationSettings settings)
@@ -48,6 +48,14 @@ public static class RunCommand
         };
         bool shake = a.Flag("shake");
         bool paced = a.Flag("paced");
+        bool volume = a.Flag("volume");
+        settings.Bend = a.String("bend", "rest") switch
+        {
+            "rest" => BendModel.RestShape,
+            "triples" => BendModel.SourceTriples,
+            "limp" => BendModel.Limp,
+            var b => throw new ArgumentException($"--bend must be rest, triples or limp, got '{b}'."),
+        };
         string? headFile = a.String("head");
         string? hairstyleFile = a.String("hairstyle");
         string? exportFolder = a.String("export") is { } ef ? a.OutputFolder("export", ef) : null;
@@ -61,6 +69,7 @@ public static class RunCommand
         if (hairstyleFile != null && headFile != null) throw new ArgumentException("--hairstyle and --head cannot be combined: a hairstyle file holds its own hair.");
         var scene = hairstyleFile != null ? LoadHairstyle(hairstyleFile, settings)
             : headFile == null ? GroomBuilder.BuildScene(groom, settings) : GrowOnMesh(headFile, (float)cell, groom, settings);
+        if (volume) scene.SetComponent(new VolumeSettings());
         build.Stop();
         var w = scene.World;
         using var dispatcher = ThreadDispatchers.CreateDefault();

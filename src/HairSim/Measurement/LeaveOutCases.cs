@@ -12,7 +12,9 @@ public sealed record LeaveOutCase(string Name, string Has, Action<HairScene> Str
     /// The cases, from a game character's hair (everything needed) down to particles on a moving head:
     /// no render strands (a server, a capture tool, or a renderer that draws only simulated strands), no collider
     /// (hair that never reaches the head), limp hair (no bending: a follow-the-leader length pass instead of the bend
-    /// sweep), limp hair that may stretch (no length pass either), and all of these at once.
+    /// sweep), limp hair that may stretch (no length pass either), and all of these at once; last, the game character
+    /// with hair volume (<see cref="VolumeSettings"/>): a scene that asks for more, so its row shows what the volume
+    /// system costs when present (every other row's lean pipeline leaves it out, at no cost).
     /// </summary>
     public static IReadOnlyList<LeaveOutCase> All { get; } =
     [
@@ -29,6 +31,7 @@ public sealed record LeaveOutCase(string Name, string Has, Action<HairScene> Str
             s.Render = null; s.ClearColliders();
             s.Settings.Bend = BendModel.Limp; s.Settings.Length = LengthMode.None; s.SettingsChanged();
         }),
+        new("hair volume", "the game character plus hair volume (VolumeSettings defaults)", s => s.SetComponent(new VolumeSettings())),
     ];
 
     /// <summary>
