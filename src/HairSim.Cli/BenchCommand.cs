@@ -1,3 +1,4 @@
+using System.CommandLine;
 using System.Diagnostics;
 using System.Globalization;
 using System.Runtime.InteropServices;
@@ -15,7 +16,23 @@ namespace HairSim.Cli;
 /// </summary>
 public static class BenchCommand
 {
-    public const string Help = "time reference vs fast path (reference scene + 1k … 100k strands, per system): --frames 60 --warmup 20 --threads N --scales 1000,4000,17400,50000,100000 --rounds 5 --lengths 3,8,12,16,17,32,64 --no-systems --out docs/performance.md";
+    public const string Description = "Speed of the reference and fast paths, 1 thread and every core: the reference scene, styled hair, 1k … 100k strands, 3 … 64 particles per strand, each system alone; ms per frame, particle-steps/s, speed-up, bytes allocated per step.";
+
+    public static Command Create()
+    {
+        var frames = CliOptions.Int("--frames", "timed frames per row (the median is reported)", 60, 3, 100_000);
+        var warmup = CliOptions.Int("--warmup", "untimed frames before each row", 20, 1, 100_000);
+        var threads = CliOptions.Int("--threads", "threads of the multi-threaded rows", () => Environment.ProcessorCount, 1, 256);
+        var scales = CliOptions.IntList("--scales", "strand counts of the scaling series (17400 is the reference scene)", [1000, 4000, 17400, 50000, 100000], 40, 400_000, "strand counts");
+        var rounds = CliOptions.Int("--rounds", "rounds for the largest scene's multi-threaded row (the frame-budget target)", 5, 1, 100);
+        var lengths = CliOptions.IntList("--lengths", "particles per strand of the strand-length series", [3, 8, 12, 16, 17, 32, 64], 2, 256, "particles per strand");
+        var noSystems = CliOptions.Switch("--no-systems", "leave out the rows that time each system alone");
+        var output = CliOptions.Text("--out", "also write the tables into this Markdown file, keeping its hand-written part after the BENCH:END marker", null, "file.md");
+        var command = new Command("bench", Description) { frames, warmup, threads, scales, rounds, lengths, noSystems, output };
+        command.SetAction(p => Execute(p.GetValue(frames), p.GetValue(warmup), p.GetValue(threads), p.GetValue(scales)!, !p.GetValue(noSystems),
+            p.GetValue(rounds), p.GetValue(lengths)!, p.GetValue(output) is { } o ? CliOptions.CheckOutputFile(o, "--out") : null));
+        return command;
+    }
 
     private static readonly CultureInfo Inv = CultureInfo.InvariantCulture;
 
@@ -28,36 +45,8 @@ public static class BenchCommand
         public double ParticleStepsPerSecond => Particles * (double)Substeps / (MedianMs / 1000.0);
     }
 
-    public static int Execute(CliArgs a)
+    public static int Execute(int frames, int warmup, int threads, int[] scales, bool systems, int rounds, int[] lengths, string? outPath)
     {
-        int frames = a.Int("frames", 60);
-        int warmup = a.Int("warmup", 20);
-        int threads = a.Int("threads", Environment.ProcessorCount);
-        string scalesText = a.String("scales", "1000,4000,17400,50000,100000");
-        bool systems = !a.Flag("no-systems");
-        int rounds = a.Int("rounds", 5);
-        string lengthsText = a.String("lengths", "3,8,12,16,17,32,64");
-        string? outPath = a.String("out") is { } o ? a.OutputFile("out", o) : null;
-        a.RejectUnknown();
-        if (frames < 3 || frames > 100_000) throw new ArgumentException("--frames must be in 3 … 100000.");
-        if (warmup < 1 || warmup > 100_000) throw new ArgumentException("--warmup must be in 1 … 100000.");
-        if (threads < 1 || threads > 256) throw new ArgumentException("--threads must be in 1 … 256.");
-        if (rounds < 1 || rounds > 100) throw new ArgumentException("--rounds must be in 1 … 100.");
-        var scales = new List<int>();
-        foreach (var part in scalesText.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries))
-        {
-            if (!int.TryParse(part, NumberStyles.Integer, Inv, out int n) || n < 40 || n > 400_000)
-                throw new ArgumentException($"--scales expects strand counts in 40 … 400000, got '{part}'.");
-            scales.Add(n);
-        }
-
-        var lengths = new List<int>();
-        foreach (var part in lengthsText.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries))
-        {
-            if (!int.TryParse(part, NumberStyles.Integer, Inv, out int n) || n < 2 || n > 256)
-                throw new ArgumentException($"--lengths expects particles per strand in 2 … 256, got '{part}'.");
-            lengths.Add(n);
-        }
 
         var command = "dotnet run -c Release --project src/HairSim.Cli -- bench" + (Environment.GetCommandLineArgs().Length > 2
             ? " " + string.Join(' ', Environment.GetCommandLineArgs().Skip(2)) : "");

@@ -1,3 +1,4 @@
+using System.CommandLine;
 using System.Diagnostics;
 using System.Globalization;
 using HairSheet.Logic;
@@ -11,18 +12,22 @@ namespace HairSim.Cli;
 /// </summary>
 public static class RenderBenchCommand
 {
-    public const string Help = "time render-buffer filling for both MultiMesh layouts, and the main thread's frame with the hair stepped in place or on a worker: --density 1 --frames 30 --warmup 10 --repeats 200 --render-ms 5";
+    public const string Description = "CPU cost of filling the Godot renderer's buffers for both MultiMesh layouts, and the main thread's frame with the hair stepped in place or on a worker thread.";
 
-    public static int Execute(CliArgs a)
+    public static Command Create()
     {
-        int density = a.Int("density", 1);
-        int frames = a.Int("frames", 30);
-        int warmup = a.Int("warmup", 10);
-        int repeats = a.Int("repeats", 200);
-        double renderMs = a.Double("render-ms", 5);
-        a.RejectUnknown();
-        if (!(renderMs >= 0 && renderMs <= 100)) throw new ArgumentException("--render-ms must be in 0 … 100.");
-        if (frames < 1 || warmup < 0 || repeats < 1 || repeats > 100_000) throw new ArgumentException("--frames ≥ 1, --warmup ≥ 0, --repeats in 1 … 100000.");
+        var density = CliOptions.Int("--density", "render strands drawn between two neighbouring simulated strands", 1, 0, RenderSettings.MaxStrandsPerGap);
+        var frames = CliOptions.Int("--frames", "60 Hz frames simulated first, so the hair is at rest as in a running game", 30, 1, 100_000);
+        var warmup = CliOptions.Int("--warmup", "untimed fills before the timed ones", 10, 0, 100_000);
+        var repeats = CliOptions.Int("--repeats", "timed fills (the median is reported)", 200, 1, 100_000);
+        var renderMs = CliOptions.Double("--render-ms", "milliseconds the main thread stays busy per frame, standing in for the engine's own work", 5, v => v >= 0 && v <= 100, "in 0 … 100 ms", "ms");
+        var command = new Command("render-bench", Description) { density, frames, warmup, repeats, renderMs };
+        command.SetAction(p => Execute(p.GetValue(density), p.GetValue(frames), p.GetValue(warmup), p.GetValue(repeats), p.GetValue(renderMs)));
+        return command;
+    }
+
+    public static int Execute(int density, int frames, int warmup, int repeats, double renderMs)
+    {
 
         var scene = GroomBuilder.BuildScene(GroomSettings.Reference(), new SimulationSettings { Path = SolverPath.Fast });
         scene.Render = new RenderSettings { StrandsPerGap = density };

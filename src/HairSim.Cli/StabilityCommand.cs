@@ -1,3 +1,4 @@
+using System.CommandLine;
 using System.Globalization;
 using System.Text;
 using HairSim;
@@ -11,19 +12,25 @@ namespace HairSim.Cli;
 /// </summary>
 public static class StabilityCommand
 {
-    public const string Help = "stability map over α, time step, particles, gravity and extreme cases: --out docs/stability.md --quick --path fast|reference";
+    public const string Description = "The stability map: Sag, hair length, α, time step, particles per strand, gravity, teleports, fast spins and degenerate starts, stable or not and the worst stretch in each cell: a Markdown report with pictures.";
+
+    public static Command Create()
+    {
+        var output = CliOptions.Text("--out", "the report to write (its pictures go to img/ beside it)", "docs/stability.md", "file.md");
+        var quick = CliOptions.Switch("--quick", "a short run: smaller grids");
+        var path = CliOptions.SolverPathOption();
+        var command = new Command("stability", Description) { output, quick, path };
+        command.SetAction(p => Execute(CliOptions.CheckOutputFile(p.GetValue(output)!, "--out"), p.GetValue(quick), CliOptions.ToSolverPath(p.GetValue(path))));
+        return command;
+    }
 
     private const string Green = "#81c784", Orange = "#ffb74d", Red = "#e57373";
 
     /// <summary>One map: a grid of cells, each run with the settings the row and column give.</summary>
     private sealed record Grid(string Id, string Title, string RowAxis, string[] Rows, string ColumnAxis, string[] Columns, Func<int, int, StabilityResult> Cell);
 
-    public static int Execute(CliArgs a)
+    public static int Execute(string output, bool quick, SolverPath path)
     {
-        string output = a.OutputFile("out", "docs/stability.md");
-        bool quick = a.Flag("quick");
-        var path = ReportCommand.ParsePath(a.String("path", "fast"));
-        a.RejectUnknown();
 
         var grids = Grids(quick, path);
         var results = new List<StabilityResult[,]>();
@@ -47,7 +54,8 @@ public static class StabilityCommand
         int nonFinite = 0;
         foreach (var r in results) foreach (var c in r) if (!c.Finite) nonFinite++;
         Console.WriteLine($"{cells} cells in {clock.Elapsed.TotalSeconds:F0} s; cells with a non-finite value: {nonFinite}; written {output}");
-        return 0;
+        if (nonFinite > 0) Console.Error.WriteLine($"error: {nonFinite} cells of the map produced non-finite values");
+        return nonFinite == 0 ? ExitCodes.Ok : ExitCodes.NonFinite;
     }
 
     private static SimulationSettings Defaults(SolverPath path) => new() { Path = path };

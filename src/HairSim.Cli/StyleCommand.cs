@@ -1,3 +1,4 @@
+using System.CommandLine;
 using System.Diagnostics;
 using System.Globalization;
 using System.Numerics;
@@ -14,25 +15,33 @@ namespace HairSim.Cli;
 /// </summary>
 public static class StyleCommand
 {
-    public const string Help = "scripted cut + fit on the reference scene, then head shake; exports .hair/.obj/.usda/.hairstyle/.svg: --out ./out --settle 1 --after 10 --stiffness 0 --sheets --strands --particles --bench [--runs 30]";
+    public const string Description = "A scripted styling session on the reference scene: settle, cut at chin height (front view), fit a curl to the fringe (side view), then a head shake; writes .hairstyle, .hair, .obj, .usda and before/after SVG pictures. --bench times a full-scene cut instead.";
+
+    public static Command Create()
+    {
+        var output = CliOptions.Text("--out", "folder for the haircut files and pictures", "out", "folder");
+        var settle = CliOptions.Double("--settle", "seconds the hair settles under gravity before it is styled", 1, v => v >= 0 && v <= 60, "in 0 … 60 seconds", "seconds");
+        var after = CliOptions.Double("--after", "seconds of head shake after styling", 10, v => v >= 0 && v <= 60, "in 0 … 60 seconds", "seconds");
+        var stiffness = CliOptions.Double("--stiffness", "global pull of every particle towards its rest pose (0 = none: the bend model holds the style by itself)", 0, v => v >= 0 && v <= 1, "in 0 … 1", "0…1");
+        var groom = new GroomOptions();
+        var bench = CliOptions.Switch("--bench", "time a full-scene cut (median of --runs) instead of the styling session");
+        var runs = CliOptions.Int("--runs", "timed cuts with --bench", 30, 1, 10_000);
+        var command = new Command("style", Description) { output, settle, after, stiffness, bench, runs };
+        groom.AddTo(command);
+        command.SetAction(p =>
+        {
+            if (p.Given(runs) && !p.GetValue(bench)) throw new UsageException("--runs applies only with --bench");
+            var g = groom.Read(p);
+            string outDir = p.GetValue(bench) ? p.GetValue(output)! : CliOptions.CheckOutputFolder(p.GetValue(output)!, "--out");
+            return Execute(outDir, p.GetValue(settle), p.GetValue(after), (float)p.GetValue(stiffness), g, p.GetValue(bench), p.GetValue(runs));
+        });
+        return command;
+    }
 
     private static readonly CultureInfo Ci = CultureInfo.InvariantCulture;
 
-    public static int Execute(CliArgs a)
+    public static int Execute(string outDir, double settle, double after, float stiffness, GroomSettings groom, bool bench, int runs)
     {
-        string outDir = a.OutputFolder("out", "out");
-        double settle = a.Double("settle", 1), after = a.Double("after", 10);
-        // The default bend model holds the style by itself; a global pull to the rest pose is optional.
-        float stiffness = (float)a.Double("stiffness", 0);
-        var groom = GroomSettings.Reference();
-        groom.SheetCount = a.Int("sheets", groom.SheetCount);
-        groom.StrandsPerSheet = a.Int("strands", groom.StrandsPerSheet);
-        groom.ParticlesPerStrand = a.Int("particles", groom.ParticlesPerStrand);
-        bool bench = a.Flag("bench");
-        int runs = a.Int("runs", 30);
-        a.RejectUnknown();
-        if (settle < 0 || settle > 60 || after < 0 || after > 60) throw new ArgumentException("--settle and --after must be in 0 … 60 seconds.");
-        if (runs < 1 || runs > 10_000) throw new ArgumentException("--runs must be in 1 … 10000.");
 
         var settings = new SimulationSettings { Path = SolverPath.Fast };
         var scene = GroomBuilder.BuildScene(groom, settings);
@@ -61,6 +70,11 @@ public static class StyleCommand
         double cutMs = sw.Elapsed.TotalMilliseconds;
         history.Do(cut);
         Console.WriteLine(string.Create(Ci, $"cut: {cut.Strands.Count:N0} strands cut at chin height (plan {cutMs:F1} ms, undo memory {cut.MemoryBytes / 1e6:F1} MB)"));
+        if (cut.Strands.Count == 0)
+        {
+            Console.Error.WriteLine(string.Create(Ci, $"check failed: the chin-height cut crossed no strand: after {settle:0.##} s of settling no hair hangs below the chin (settle longer, or grow longer hair)"));
+            return ExitCodes.CheckFailed;
+        }
 
         var key = KeyCurve.FromStrands(w, fringe.Strands);
         sw.Restart();
@@ -92,7 +106,17 @@ public static class StyleCommand
         var reloaded = HairstyleFile.Load(Path.Combine(outDir, "hairstyle.hairstyle"));
         Console.WriteLine($"hairstyle file reloads bit-exact: {reloaded.World.BitEquals(w)}");
         Svg(outDir, "after", scene, mask);
-        return m.NonFinite == 0 && reloaded.World.BitEquals(w) ? 0 : 3;
+        if (m.NonFinite != 0)
+        {
+            Console.Error.WriteLine($"error: the simulation produced {m.NonFinite} non-finite values");
+            return ExitCodes.NonFinite;
+        }
+        if (!reloaded.World.BitEquals(w))
+        {
+            Console.Error.WriteLine("check failed: the saved hairstyle does not reload bit-exact");
+            return ExitCodes.CheckFailed;
+        }
+        return ExitCodes.Ok;
     }
 
     /// <summary>
@@ -120,7 +144,7 @@ public static class StyleCommand
         {
             var area = SelectionArea.Rectangle(ScreenOf(_side, new Vector3(0, 0.075f, 0.055f)), ScreenOf(_side, new Vector3(0, 0.02f, 0.12f)));
             var fringe = HairEditor.Select(scene, _side, area, new SelectionOptions { RootsOnly = true });
-            if (fringe.Count == 0) throw new ArgumentException("The fringe selection is empty; the scripted fit needs the reference head.");
+            if (fringe.Count == 0) throw new UsageException("no strand is rooted over the forehead, where the scripted fit selects the fringe: use more --sheets or --strands");
             return fringe;
         }
 
@@ -215,6 +239,11 @@ public static class StyleCommand
     private static int Bench(HairScene scene, EditHistory history, Stroke stroke, CutOptions options, int runs)
     {
         int strands = HairEditor.Cut(scene, stroke, options).Strands.Count;
+        if (strands == 0)
+        {
+            Console.Error.WriteLine("check failed: the chin-height cut crosses no strand, so there is nothing to time (settle longer)");
+            return ExitCodes.CheckFailed;
+        }
         for (int k = 0; k < 5; k++) { history.Do(HairEditor.Cut(scene, stroke, options)); history.Undo(); } // warm-up (JIT, caches)
         var plan = new double[runs];
         var full = new double[runs];

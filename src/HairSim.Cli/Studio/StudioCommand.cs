@@ -1,21 +1,26 @@
+using System.CommandLine;
+
 namespace HairSim.Cli.Studio;
 
 /// <summary>`hairsim studio`: serves HairSheet Studio on loopback until Ctrl+C (or --seconds).</summary>
 public static class StudioCommand
 {
-    public const string Help = "style hair in a browser: serves HairSheet Studio on http://127.0.0.1:5088/ (--port N, 0 = any free port; " +
-        "--host 127.0.0.1; --groom reference|medium|long|short|small; --density strands per sheet; --seconds N to stop after N s)";
+    public const string Description = "Style hair in a browser: serves HairSheet Studio on http://127.0.0.1:5088/ until Ctrl+C.";
 
-    public static int Execute(CliArgs a)
+    public static Command Create()
     {
-        string host = a.String("host", "127.0.0.1");
-        int port = a.Int("port", 5088);
-        string groom = a.String("groom", StudioGrooms.Default);
-        int density = a.Int("density", 0);
-        double seconds = a.Double("seconds", 0);
-        a.RejectUnknown();
-        if (port < 0 || port > 65535) throw new ArgumentException("--port must be 0 … 65535 (0 = any free port).");
-        if (seconds < 0) throw new ArgumentException("--seconds must be 0 (run until Ctrl+C) or more.");
+        var host = CliOptions.Text("--host", "address to listen on (anything but loopback lets other machines use the studio)", "127.0.0.1", "address");
+        var port = CliOptions.Int("--port", "port to listen on; 0 picks a free one", 5088, 0, 65535);
+        var groom = CliOptions.Choice("--groom", "the hair the studio starts with", StudioGrooms.Default, [.. StudioGrooms.All.Select(g => g.Name)]);
+        var density = CliOptions.Int("--density", "strands per sheet, overriding the groom's (0 keeps the groom's)", 0, 0, 64);
+        var seconds = CliOptions.Double("--seconds", "stop after this many seconds (0 = run until Ctrl+C)", 0, v => v >= 0, "0 or more seconds", "seconds");
+        var command = new Command("studio", Description) { host, port, groom, density, seconds };
+        command.SetAction(p => Execute(p.GetValue(host)!, p.GetValue(port), p.GetValue(groom)!, p.GetValue(density), p.GetValue(seconds)));
+        return command;
+    }
+
+    public static int Execute(string host, int port, string groom, int density, double seconds)
+    {
         StudioGrooms.Create(groom, density > 0 ? density : null);   // refuse a bad groom before starting anything
 
         using var session = new StudioSession(groom, density > 0 ? density : null);

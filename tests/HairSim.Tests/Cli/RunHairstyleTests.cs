@@ -20,7 +20,7 @@ public sealed class RunHairstyleTests : IDisposable
         string style = Path.Combine(_dir, "in.hairstyle");
         HairstyleFile.Save(scene, style);
         string output = Path.Combine(_dir, "out");
-        int code = RunCommand.Execute(new CliArgs(["--hairstyle", style, "--seconds", "0.25", "--export", output]));
+        int code = CliApp.Run(["run", "--hairstyle", style, "--seconds", "0.25", "--export", output]);
         Assert.Equal(0, code);
         foreach (var f in new[] { "hair.hair", "hair.obj", "hair.usda", "hair.hairstyle", "front.svg", "side.svg" })
             Assert.True(new FileInfo(Path.Combine(output, f)).Length > 100, $"{f} missing or empty");
@@ -32,10 +32,12 @@ public sealed class RunHairstyleTests : IDisposable
     [Fact]
     public void RefusesAMissingOrCorruptFileAndCombiningWithAHeadMesh()
     {
-        Assert.ThrowsAny<IOException>(() => RunCommand.Execute(new CliArgs(["--hairstyle", Path.Combine(_dir, "none.hairstyle"), "--seconds", "0.1"])));
+        var error = new StringWriter();
+        Assert.Equal(ExitCodes.FileError, CliApp.Run(["run", "--hairstyle", Path.Combine(_dir, "none.hairstyle"), "--seconds", "0.1"], TextWriter.Null, error));
         string corrupt = Path.Combine(_dir, "bad.hairstyle");
         File.WriteAllText(corrupt, "not a hairstyle");
-        Assert.Throws<InvalidDataException>(() => RunCommand.Execute(new CliArgs(["--hairstyle", corrupt, "--seconds", "0.1"])));
-        Assert.Throws<ArgumentException>(() => RunCommand.Execute(new CliArgs(["--hairstyle", corrupt, "--head", "procedural"])));
+        Assert.Equal(ExitCodes.FileError, CliApp.Run(["run", "--hairstyle", corrupt, "--seconds", "0.1"], TextWriter.Null, error));
+        Assert.Equal(ExitCodes.Usage, CliApp.Run(["run", "--hairstyle", corrupt, "--head", "procedural"], TextWriter.Null, error));
+        Assert.Contains("--hairstyle and --head cannot be combined", error.ToString());
     }
 }
