@@ -67,7 +67,7 @@ public static class RunCommand
         var g = new HairSim.Meshes.MeshGroomSettings
         {
             SheetCount = groom.SheetCount, StrandsPerSheet = groom.StrandsPerSheet, ParticlesPerStrand = groom.ParticlesPerStrand,
-            StrandLength = groom.StrandLength, ScalpMaskThreshold = mesh.Colors != null ? 0.5f : 0f,
+            StrandLength = groom.StrandLength, PinnedPerStrand = groom.PinnedPerStrand, ScalpMaskThreshold = mesh.Colors != null ? 0.5f : 0f,
         };
         HairScene scene;
         try { scene = HairSim.Meshes.MeshScalp.BuildScene(mesh, field, g, settings); }
