@@ -42,7 +42,6 @@ public static class StyleCommand
 
     public static int Execute(string outDir, double settle, double after, float stiffness, GroomSettings groom, bool bench, int runs)
     {
-
         var settings = new SimulationSettings { Path = SolverPath.Fast };
         var scene = GroomBuilder.BuildScene(groom, settings);
         var w = scene.World;
@@ -72,7 +71,7 @@ public static class StyleCommand
         Console.WriteLine(string.Create(Ci, $"cut: {cut.Strands.Count:N0} strands cut at chin height (plan {cutMs:F1} ms, undo memory {cut.MemoryBytes / 1e6:F1} MB)"));
         if (cut.Strands.Count == 0)
         {
-            Console.Error.WriteLine(string.Create(Ci, $"check failed: the chin-height cut crossed no strand: after {settle:0.##} s of settling no hair hangs below the chin (settle longer, or grow longer hair)"));
+            Console.Error.WriteLine(string.Create(Ci, $"check failed: the chin-height cut crossed no strand: no hair reaches below the chin after {settle:0.##} s of settling"));
             return ExitCodes.CheckFailed;
         }
 
@@ -241,7 +240,7 @@ public static class StyleCommand
         int strands = HairEditor.Cut(scene, stroke, options).Strands.Count;
         if (strands == 0)
         {
-            Console.Error.WriteLine("check failed: the chin-height cut crosses no strand, so there is nothing to time (settle longer)");
+            Console.Error.WriteLine("check failed: the chin-height cut crosses no strand, so there is nothing to time");
             return ExitCodes.CheckFailed;
         }
         for (int k = 0; k < 5; k++) { history.Do(HairEditor.Cut(scene, stroke, options)); history.Undo(); } // warm-up (JIT, caches)
