@@ -86,8 +86,30 @@ public sealed class HairPipeline
         requested.Validate();
         if (world.EditStamp != _reachStamp) { world.ValidateRestData(); _scale = GroomScale.Of(world); _reachStamp = world.EditStamp; } // only after edits
         bool teleported = headMove > requested.TeleportDistance * _scale.Reach || delta.Angle > requested.TeleportAngle;
+        // A system that couples strands once per frame may ask for shorter frames (hair volume: a fixed share of the
+        // hair's natural time), so it behaves the same at 30 and 240 Hz and on a doll or a giant: the frame is then
+        // stepped in parts, the head moving a part of the way each time and the substeps shared out between them.
+        int parts = 1;
+        if (!teleported)
+            foreach (var system in _frameStart)
+                if (system is IFrameSplitter splitter) parts = Math.Max(parts, splitter.PartsOf(_scene, dt, _scale));
+        if (parts <= 1) { StepPart(dt, headTarget, headMove, delta, teleported, requested.Substeps); return; }
+        var start = world.Head;
+        int substeps = Math.Max(1, (requested.Substeps + parts - 1) / parts);
+        for (int i = 1; i <= parts; i++)
+        {
+            var target = i == parts ? headTarget : RigidTransform.Interpolate(start, headTarget, i / (float)parts);
+            StepPart(dt / parts, target, (target.Position - world.Head.Position).Length(), RigidTransform.Delta(world.Head, target), false, substeps);
+        }
+    }
+
+    private void StepPart(float dt, RigidTransform headTarget, float headMove, RigidTransform delta, bool teleported, int substeps)
+    {
+        var world = _scene.World;
+        var ctx = _ctx;
+        var requested = _scene.Settings;
         // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
-        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _scale);
+        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _scale, substeps);
         var st = _guarded;
         ctx.Settings = st;
         ctx.Dt = dt;

@@ -25,17 +25,19 @@ public static class StabilityGuards
 
     /// <summary>Writes the guarded settings for a frame of length dt in which the head origin moves <paramref name="headTranslation"/> metres and turns <paramref name="headAngle"/> radians.</summary>
     /// <param name="scale">The groom's size: its reach (a turn of θ moves the farthest particle θ·reach), mean segment and strand length.</param>
-    public static void Apply(SimulationSettings requested, SimulationSettings effective, float dt, float headTranslation, float headAngle, bool teleported, in GroomScale scale)
+    /// <param name="baseSubsteps">Substeps before the guards raise them (the requested count unless a frame is stepped in parts).</param>
+    public static void Apply(SimulationSettings requested, SimulationSettings effective, float dt, float headTranslation, float headAngle, bool teleported, in GroomScale scale, int baseSubsteps = 0)
     {
         requested.CopyTo(effective);
         // α is the source's triple stiffness: no other bend model has triples (a global shape pull may still run).
         if (requested.Bend != BendModel.SourceTriples) effective.Alpha = 0f;
         effective.Damping = (float)(requested.Damping / scale.NaturalTime);
         effective.MaxSpeed = (float)(requested.MaxSpeed * scale.NaturalSpeed);
+        if (baseSubsteps > 0) effective.Substeps = baseSubsteps;
         float reach = scale.Reach, segment = scale.Segment;
         if (!requested.Guards) return;
         if (requested.Mode == ShapeMatchMode.Muller && requested.Alpha > 1f) effective.Alpha = 1f;
-        double substeps = requested.Substeps;
+        double substeps = baseSubsteps > 0 ? baseSubsteps : requested.Substeps;
         if (requested.MaxSubstep > 0f) substeps = Math.Max(substeps, Math.Ceiling(dt / requested.MaxSubstep - 1e-4));
         double g = requested.Gravity.Length();
         if (requested.MaxFallPerSubstep > 0f && segment > 0f && g > 0)

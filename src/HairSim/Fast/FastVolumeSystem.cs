@@ -6,14 +6,17 @@ namespace HairSim.Fast;
 
 /// <summary>
 /// Hair volume, fast path: the reference <see cref="VolumeSystem"/>'s steps in single precision, in parallel passes
-/// (bounds, splat, reduce, gradient, gather), with node data packed so a corner is one 128- or 256-bit load.
+/// (bounds, splat, reduce, node changes, sample and spread), with node data packed so a corner is one 128-bit load.
 /// The splat writes into <see cref="Partitions"/> private grids, a fixed number so the sums (and so the results) do not
 /// depend on how many threads run; the reduce pass adds them in order and clears them for the next frame.
 /// </summary>
-internal sealed class FastVolumeSystem : IHairSystem
+internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
 {
     public string Name => VolumeSystem.SystemName;
     public SystemPhase Phase => SystemPhase.FrameStart;
+
+    /// <summary>Frames longer than <see cref="VolumeSettings.MaxStep"/> natural times are stepped in parts (none without the component: a kept pipeline changes nothing).</summary>
+    public int PartsOf(HairScene scene, float dt, GroomScale scale) => scene.GetComponent<VolumeSettings>()?.PartsOf(dt, scale) ?? 1;
 
     /// <summary>Private splat grids (and splat jobs): fixed, so the bits do not depend on the thread count.</summary>
     public const int Partitions = 4;
@@ -24,12 +27,15 @@ internal sealed class FastVolumeSystem : IHairSystem
     // (ρ, mx, my, mz) per node; every partition is all zeros between frames (the reduce pass clears what it read).
     private readonly Vector128<float>[][] _splat = new Vector128<float>[Partitions][];
     private float[] _p = [];
-    // (∂P/∂x, ∂P/∂y, ∂P/∂z, ρ, mx, my, mz, 0) per node, per cell width.
-    private Vector256<float>[] _field = [];
+    // (ρ, mx, my, mz) summed over the partitions, per node.
+    private Vector128<float>[] _sum = [];
+    // The velocity change a particle at a node takes, as (D, S): Δv = D − S·v, with D = push + S·(mean velocity) and
+    // S the friction share (0 where there is no hair).
+    private Vector128<float>[] _change = [];
     private readonly Vector3[] _min = new Vector3[MaxJobs], _max = new Vector3[MaxJobs];
-    // Per particle of the sample strands: the push P, the friction share F and F × the hair's mean velocity there
-    // (zeros where nothing was sampled), so a particle's change is Σ t·(P + F·target − F·v) over its two samples.
-    private float[] _pushX = [], _pushY = [], _pushZ = [], _pullX = [], _pullY = [], _pullZ = [], _share = [];
+    // Per particle of the sample strands: D and S interpolated there (zeros where nothing was sampled), so a particle's
+    // change is Σ t·(D − S·v) over its two samples.
+    private float[] _pushX = [], _pushY = [], _pushZ = [], _share = [];
     private int _every;
     private readonly Action<int> _boundsJob, _splatJob, _reduceJob, _gradientJob, _gatherJob;
 
@@ -71,21 +77,21 @@ internal sealed class FastVolumeSystem : IHairSystem
         {
             for (int p = 0; p < Partitions; p++) _splat[p] = new Vector128<float>[n];
             _p = new float[n];
-            _field = new Vector256<float>[n];
+            _sum = new Vector128<float>[n];
+            _change = new Vector128<float>[n];
         }
         _nodeJobs = Math.Min(_grid.Nz, dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 2);
         _invTarget = (float)(1.0 / (settings.Density * (double)rest));
         double dt = ctx.Dt;
         _push = (float)(settings.Stiffness * BendProfile.StandardGravity * dt);
-        _maxPush = (float)(0.5 * _grid.Cell / dt);
+        _maxPush = (float)(VolumeSettings.MaxPushPerPass * _grid.Cell / dt);
         _friction = (float)(1.0 - Math.Exp(-settings.Friction * dt / ctx.Scale.NaturalTime));
         _inert = settings.IsInert;
         _every = settings.SampleEvery;
         if (_share.Length != w.ParticleCount)
         {
             int np = w.ParticleCount;
-            _pushX = new float[np]; _pushY = new float[np]; _pushZ = new float[np];
-            _pullX = new float[np]; _pullY = new float[np]; _pullZ = new float[np]; _share = new float[np];
+            _pushX = new float[np]; _pushY = new float[np]; _pushZ = new float[np]; _share = new float[np];
         }
         _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 4);
 
@@ -214,8 +220,7 @@ internal sealed class FastVolumeSystem : IHairSystem
             var sum = ((s0[k] + s1[k]) + s2[k]) + s3[k];
             s0[k] = default; s1[k] = default; s2[k] = default; s3[k] = default;
             _p[k] = MathF.Max(0f, sum.GetElement(0) * inv - 1f);
-            // Until the gradient pass overwrites the first three lanes, the field holds the sums in its upper half.
-            _field[k] = Vector256.Create(Vector128<float>.Zero, sum);
+            _sum[k] = sum;
         }
     }
 
@@ -225,15 +230,24 @@ internal sealed class FastVolumeSystem : IHairSystem
         var g = _grid;
         int nx = g.Nx, ny = g.Ny, nz = g.Nz, sy = nx, sz = nx * ny;
         var p = _p;
+        float push = _push, maxPush = _maxPush, friction = _friction;
         for (int k = begin; k < end; k++)
         {
             int z = k / sz, r = k - z * sz, y = r / sy, x = r - y * sy;
             float px1 = x + 1 < nx ? p[k + 1] : 0f, px0 = x > 0 ? p[k - 1] : 0f;
             float py1 = y + 1 < ny ? p[k + sy] : 0f, py0 = y > 0 ? p[k - sy] : 0f;
             float pz1 = z + 1 < nz ? p[k + sz] : 0f, pz0 = z > 0 ? p[k - sz] : 0f;
-            var sum = _field[k].GetUpper(); // (ρ, mx, my, mz)
-            _field[k] = Vector256.Create(0.5f * (px1 - px0), 0.5f * (py1 - py0), 0.5f * (pz1 - pz0), sum.GetElement(0),
-                sum.GetElement(1), sum.GetElement(2), sum.GetElement(3), 0f);
+            float dx = -push * 0.5f * (px1 - px0), dy = -push * 0.5f * (py1 - py0), dz = -push * 0.5f * (pz1 - pz0);
+            float d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 > maxPush * maxPush) { float c = maxPush / MathF.Sqrt(d2); dx *= c; dy *= c; dz *= c; }
+            var sum = _sum[k]; // (ρ, mx, my, mz)
+            float rho = sum.GetElement(0);
+            if (rho > VolumeSystem.MinDensity)
+            {
+                float pull = friction / rho;
+                _change[k] = Vector128.Create(dx + pull * sum.GetElement(1), dy + pull * sum.GetElement(2), dz + pull * sum.GetElement(3), friction);
+            }
+            else _change[k] = Vector128.Create(dx, dy, dz, 0f);
         }
     }
 
@@ -275,9 +289,9 @@ internal sealed class FastVolumeSystem : IHairSystem
                 var vx = Load(velX, i); var vy = Load(velY, i); var vz = Load(velZ, i);
                 var fa = vta * Load(_share, ia); var fb = vtb * Load(_share, ib);
                 var free = Vector256.GreaterThan(Load(invMass, i), Vector256<float>.Zero);
-                var dx = vta * (Load(_pushX, ia) + Load(_pullX, ia)) + vtb * (Load(_pushX, ib) + Load(_pullX, ib)) - (fa + fb) * vx;
-                var dy = vta * (Load(_pushY, ia) + Load(_pullY, ia)) + vtb * (Load(_pushY, ib) + Load(_pullY, ib)) - (fa + fb) * vy;
-                var dz = vta * (Load(_pushZ, ia) + Load(_pullZ, ia)) + vtb * (Load(_pushZ, ib) + Load(_pullZ, ib)) - (fa + fb) * vz;
+                var dx = vta * Load(_pushX, ia) + vtb * Load(_pushX, ib) - (fa + fb) * vx;
+                var dy = vta * Load(_pushY, ia) + vtb * Load(_pushY, ib) - (fa + fb) * vy;
+                var dz = vta * Load(_pushZ, ia) + vtb * Load(_pushZ, ib) - (fa + fb) * vz;
                 (vx + (dx & free)).StoreUnsafe(ref velX[0], (nuint)i);
                 (vy + (dy & free)).StoreUnsafe(ref velY[0], (nuint)i);
                 (vz + (dz & free)).StoreUnsafe(ref velZ[0], (nuint)i);
@@ -290,16 +304,16 @@ internal sealed class FastVolumeSystem : IHairSystem
             int ia = firstA + Math.Min(k, lastA), ib = firstB + Math.Min(k, lastB);
             float vx = velX[i], vy = velY[i], vz = velZ[i];
             float fab = ta * _share[ia] + t * _share[ib];
-            velX[i] = vx + (ta * (_pushX[ia] + _pullX[ia]) + t * (_pushX[ib] + _pullX[ib]) - fab * vx);
-            velY[i] = vy + (ta * (_pushY[ia] + _pullY[ia]) + t * (_pushY[ib] + _pullY[ib]) - fab * vy);
-            velZ[i] = vz + (ta * (_pushZ[ia] + _pullZ[ia]) + t * (_pushZ[ib] + _pullZ[ib]) - fab * vz);
+            velX[i] = vx + (ta * _pushX[ia] + t * _pushX[ib] - fab * vx);
+            velY[i] = vy + (ta * _pushY[ia] + t * _pushY[ib] - fab * vy);
+            velZ[i] = vz + (ta * _pushZ[ia] + t * _pushZ[ib] - fab * vz);
         }
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static Vector256<float> Load(float[] a, int i) => Vector256.LoadUnsafe(ref a[0], (nuint)i);
 
-    /// <summary>The push, friction share and pull at every particle of sample strand s, into the per-particle buffers.</summary>
+    /// <summary>D and S (see <see cref="_change"/>) at every particle of sample strand s, into the per-particle buffers.</summary>
     private void SampleStrand(int s)
     {
         var w = _w;
@@ -307,20 +321,21 @@ internal sealed class FastVolumeSystem : IHairSystem
         var origin = g.Origin; float inv = g.InvCell;
         float hx = g.Nx - 1.001f, hy = g.Ny - 1.001f, hz = g.Nz - 1.001f;
         int sy = g.Nx, sz = g.Nx * g.Ny;
-        ref var field = ref _field[0];
-        float push = _push, maxPush = _maxPush, friction = _friction;
+        ref var change = ref _change[0];
         float[] posX = w.PosX, posY = w.PosY, posZ = w.PosZ, velX = w.VelX, velY = w.VelY, velZ = w.VelZ, invMass = w.InvMass;
-        float[] pushX = _pushX, pushY = _pushY, pushZ = _pushZ, pullX = _pullX, pullY = _pullY, pullZ = _pullZ, share = _share;
+        float[] pushX = _pushX, pushY = _pushY, pushZ = _pushZ, share = _share;
         for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
         {
-            pushX[i] = pushY[i] = pushZ[i] = pullX[i] = pullY[i] = pullZ[i] = share[i] = 0f;
-            if (invMass[i] == 0f) continue;
             float px = posX[i], py = posY[i], pz = posZ[i];
-            if (!float.IsFinite(px + py + pz + velX[i] + velY[i] + velZ[i])) continue;
+            if (invMass[i] == 0f || !float.IsFinite(px + py + pz + velX[i] + velY[i] + velZ[i]))
+            {
+                pushX[i] = pushY[i] = pushZ[i] = share[i] = 0f;
+                continue;
+            }
             int b = Cell(px, py, pz, origin, inv, hx, hy, hz, sy, sz, out float fx, out float fy, out float fz);
             float gx = 1f - fx, gy = 1f - fy, gz = 1f - fz;
             float w00 = gy * gz, w10 = fy * gz, w01 = gy * fz, w11 = fy * fz;
-            ref var n0 = ref Unsafe.Add(ref field, b);
+            ref var n0 = ref Unsafe.Add(ref change, b);
             ref var n1 = ref Unsafe.Add(ref n0, sy);
             ref var n2 = ref Unsafe.Add(ref n0, sz);
             ref var n3 = ref Unsafe.Add(ref n2, sy);
@@ -328,18 +343,7 @@ internal sealed class FastVolumeSystem : IHairSystem
                     + (n1 * (gx * w10) + Unsafe.Add(ref n1, 1) * (fx * w10))
                     + ((n2 * (gx * w01) + Unsafe.Add(ref n2, 1) * (fx * w01))
                     + (n3 * (gx * w11) + Unsafe.Add(ref n3, 1) * (fx * w11)));
-            var lo = acc.GetLower(); var hi = acc.GetUpper();
-            float dvx = -push * lo.GetElement(0), dvy = -push * lo.GetElement(1), dvz = -push * lo.GetElement(2);
-            float dv2 = dvx * dvx + dvy * dvy + dvz * dvz;
-            if (dv2 > maxPush * maxPush) { float k = maxPush / MathF.Sqrt(dv2); dvx *= k; dvy *= k; dvz *= k; }
-            pushX[i] = dvx; pushY[i] = dvy; pushZ[i] = dvz;
-            float rho = lo.GetElement(3);
-            if (rho > 1e-12f)
-            {
-                float pull = friction / rho;
-                pullX[i] = hi.GetElement(0) * pull; pullY[i] = hi.GetElement(1) * pull; pullZ[i] = hi.GetElement(2) * pull;
-                share[i] = friction;
-            }
+            pushX[i] = acc.GetElement(0); pushY[i] = acc.GetElement(1); pushZ[i] = acc.GetElement(2); share[i] = acc.GetElement(3);
         }
     }
 }

@@ -11,9 +11,10 @@ public readonly record struct CrossingResult(int Crossings, int Sunk, double Mea
 /// <summary>
 /// Two crossing sheets of limp hair: sheet A (20 strands of 16 particles along x, 4 % of the length apart) lies on a
 /// nearly flat floor; sheet B, the same strands along z, starts above A and falls onto it under 1 g. Both are pinned at
-/// their roots and rest on the floor with friction. After 3 natural seconds the heights of A and B are compared where
-/// each strand of B crosses each strand of A (400 crossings): without hair–hair interaction B falls into A's layer
-/// and ends below it at about half the crossings; a volume that keeps layers apart leaves B above A at every one.
+/// their roots and rest on the floor with friction. After 3 natural seconds the heights of A and B are compared wherever
+/// a strand of B crosses a strand of A seen from above (about 400 crossings as dropped): without hair–hair interaction B
+/// falls into A's layer and ends below it at about half the crossings; a volume that keeps layers apart leaves B above
+/// A at every one.
 /// Everything scales with <c>scale</c> (1 = 25 cm strands), times with √scale (Froude), so the case is the same at any size.
 /// </summary>
 public static class CrossingSheets
@@ -52,34 +53,42 @@ public static class CrossingSheets
         return Measure(scene.World, 0.25f * scale);
     }
 
-    /// <summary>Heights of A and B at every crossing of a strand of B over a strand of A.</summary>
+    /// <summary>
+    /// Heights of A and B wherever a segment of a strand of B crosses a segment of a strand of A seen from above (in the
+    /// floor's plane), so strands that bend sideways are still measured where they cross.
+    /// </summary>
     public static CrossingResult Measure(HairWorld w, float length)
     {
         int crossings = 0, sunk = 0; double gaps = 0;
         for (int i = 0; i < Strands; i++)
+        {
+            var a = w.GetStrandPositions(i);
             for (int j = 0; j < Strands; j++)
             {
-                var a = w.GetStrandPositions(i); var b = w.GetStrandPositions(Strands + j);
-                double ya = HeightAt(a, b[b.Length / 2].X, 0), yb = HeightAt(b, a[a.Length / 2].Z, 2);
-                if (double.IsNaN(ya) || double.IsNaN(yb)) continue;
-                crossings++; gaps += yb - ya;
-                if (yb <= ya) sunk++;
+                var b = w.GetStrandPositions(Strands + j);
+                for (int p = 1; p < a.Length; p++)
+                    for (int q = 1; q < b.Length; q++)
+                    {
+                        if (!Cross(a[p - 1], a[p], b[q - 1], b[q], out float s, out float t)) continue;
+                        double ya = a[p - 1].Y + s * (a[p].Y - a[p - 1].Y), yb = b[q - 1].Y + t * (b[q].Y - b[q - 1].Y);
+                        crossings++; gaps += yb - ya;
+                        if (yb <= ya) sunk++;
+                    }
             }
+        }
         return new CrossingResult(crossings, sunk, crossings > 0 ? gaps / crossings / length : double.NaN, w.CountNonFinite());
     }
 
-    // The strand's height where its coordinate (0 = x, 2 = z) passes through `at`; NaN where it does not.
-    private static double HeightAt(Vector3[] s, float at, int axis)
+    // Whether segments p0p1 and q0q1 cross in the xz plane, and where along each (0 … 1).
+    private static bool Cross(Vector3 p0, Vector3 p1, Vector3 q0, Vector3 q1, out float s, out float t)
     {
-        for (int k = 1; k < s.Length; k++)
-        {
-            float k0 = axis == 0 ? s[k - 1].X : s[k - 1].Z, k1 = axis == 0 ? s[k].X : s[k].Z;
-            if ((k0 - at) * (k1 - at) <= 0 && k0 != k1)
-            {
-                float t = (at - k0) / (k1 - k0);
-                return s[k - 1].Y + t * (s[k].Y - s[k - 1].Y);
-            }
-        }
-        return double.NaN;
+        s = t = 0f;
+        float rx = p1.X - p0.X, rz = p1.Z - p0.Z, ux = q1.X - q0.X, uz = q1.Z - q0.Z;
+        float den = rx * uz - rz * ux;
+        if (MathF.Abs(den) < 1e-12f) return false;
+        float dx = q0.X - p0.X, dz = q0.Z - p0.Z;
+        s = (dx * uz - dz * ux) / den;
+        t = (dx * rz - dz * rx) / den;
+        return s >= 0f && s < 1f && t >= 0f && t < 1f;
     }
 }

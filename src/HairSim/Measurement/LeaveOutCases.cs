@@ -32,6 +32,8 @@ public sealed record LeaveOutCase(string Name, string Has, Action<HairScene> Str
             s.Settings.Bend = BendModel.Limp; s.Settings.Length = LengthMode.None; s.SettingsChanged();
         }),
         new("hair volume", "the game character plus hair volume (VolumeSettings defaults)", s => s.SetComponent(new VolumeSettings())),
+        new("hair volume, layers kept", "the same with a volume pass every 1/32 natural time (MaxStep; 4 per 60 Hz frame)",
+            s => s.SetComponent(new VolumeSettings { MaxStep = 1f / 32 })),
     ];
 
     /// <summary>

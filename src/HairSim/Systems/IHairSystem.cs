@@ -52,3 +52,13 @@ public sealed class FrameContext
     /// <summary>World-space colliders for substep s.</summary>
     public ReadOnlySpan<Collider> CollidersAt(int substep) => SubstepColliders.AsSpan(substep * ColliderCount, ColliderCount);
 }
+
+/// <summary>
+/// A <see cref="SystemPhase.FrameStart"/> system that needs frames no longer than some time: the pipeline steps a longer
+/// frame in that many parts, each running the system once and its share of the substeps.
+/// </summary>
+public interface IFrameSplitter
+{
+    /// <summary>Into how many parts a frame of <paramref name="dt"/> seconds must be cut (1 = none). May throw for bad settings, before anything moves.</summary>
+    int PartsOf(HairScene scene, float dt, GroomScale scale);
+}

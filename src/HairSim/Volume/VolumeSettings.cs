@@ -13,18 +13,19 @@ public sealed class VolumeSettings
     /// <summary>
     /// How hard packed hair pushes outward, in g (1 g = 9.81 m/s²) per unit of over-density per cell: where two layers
     /// lie in one another (twice the target density) the hair between them is pushed apart with about this many g.
-    /// 0 = no push (friction only); 8 = soft, a layer dropped on another mostly sinks into it; 30 = the default, layers
-    /// mostly rest on one another; 100 = springy, big hair.
+    /// 0 = no push (friction only, layers sink into one another); 8 = the default, a layer dropped on another comes to
+    /// rest on it about a cell above; 30 = springy, packed hair bursts apart sideways; 100 = big hair.
     /// </summary>
-    public float Stiffness { get; set; } = 30f;
+    public float Stiffness { get; set; } = 8f;
 
     /// <summary>
     /// Friction between strands: how fast a strand's velocity relative to its neighbours decays, per natural time
     /// √(L / 1 g) (0.16 s for 25 cm hair). 0 = strands slide freely through one another's motion; 1 = the difference
-    /// falls to 37 % in one natural time; 4 (the default) = neighbouring strands move together, a layer slows as it reaches
-    /// another; 20 = nearly one rigid mass (wet or gelled hair).
+    /// falls to 37 % in one natural time; 4 = neighbouring strands drift together; 50 (the default) = strands that touch
+    /// move together within a few milliseconds, so a layer stops where it meets another (hair as a body, like real
+    /// hair's strand-to-strand friction); 1000 = the grid's velocity outright.
     /// </summary>
-    public float Friction { get; set; } = 4f;
+    public float Friction { get; set; } = 50f;
 
     /// <summary>
     /// The density hair may reach before it pushes back, as a multiple of the groom at rest (the median density the
@@ -48,6 +49,28 @@ public sealed class VolumeSettings
     /// </summary>
     public int SampleEvery { get; set; } = 4;
 
+    /// <summary>
+    /// The longest time between two volume passes, in natural times √(L / 1 g): a longer frame is stepped in parts (the
+    /// substeps shared out between them), so hair behaves the same at 30 and 240 Hz and at every size. 0.125 (the
+    /// default) = 20 ms for 25 cm hair (one pass per frame at 60 Hz, two at 30 Hz), 4 ms for a 1 cm doll's, 125 ms for
+    /// a 10 m creature's. At most <see cref="MaxParts"/> parts per frame.
+    /// </summary>
+    public float MaxStep { get; set; } = 0.125f;
+
+    /// <summary>The push moves hair at most this share of a cell per volume pass (so a strongly packed region opens up over several passes instead of launching hair).</summary>
+    public static double MaxPushPerPass = 0.5;
+
+    /// <summary>The most parts a frame is cut into for the volume (a 1 cm doll at 30 Hz needs 9 at the default MaxStep, 34 at 1/32).</summary>
+    public const int MaxParts = 64;
+
+    /// <summary>Into how many parts a frame of dt seconds is stepped for these settings.</summary>
+    public int PartsOf(float dt, in GroomScale scale)
+    {
+        Validate();
+        double parts = Math.Ceiling(dt / (MaxStep * scale.NaturalTime) - 1e-6);
+        return (int)Math.Clamp(parts, 1, MaxParts);
+    }
+
     /// <summary>Settings that compute the whole grid and change nothing (for measuring a framework that never leaves the system out).</summary>
     public static VolumeSettings Inert => new() { Stiffness = 0f, Friction = 0f };
 
@@ -62,6 +85,7 @@ public sealed class VolumeSettings
         Range(Friction, 0f, 1000f, nameof(Friction));
         Range(Density, 0.05f, 100f, nameof(Density));
         Range(CellSize, 0.1f, 100f, nameof(CellSize));
+        Range(MaxStep, 0.01f, 100f, nameof(MaxStep));
         if (SampleEvery < 1 || SampleEvery > 64)
             throw new ArgumentOutOfRangeException(nameof(SampleEvery), SampleEvery, $"Volume SampleEvery must be in 1 … 64, got {SampleEvery}.");
     }

@@ -14,18 +14,24 @@ namespace HairSim;
 ///    hair's local mean velocity, f = 1 − e^(−Friction·dt/T₀) with T₀ = √(L / 1 g).
 /// The substeps that follow carry the changed velocities through the strand constraints. Skipped on teleport frames.
 /// </summary>
-public sealed class VolumeSystem : IHairSystem
+public sealed class VolumeSystem : IHairSystem, IFrameSplitter
 {
     public const string SystemName = "Volume";
     public string Name => SystemName;
     public SystemPhase Phase => SystemPhase.FrameStart;
+
+    /// <summary>Frames longer than <see cref="VolumeSettings.MaxStep"/> natural times are stepped in parts (none without the component: a kept pipeline changes nothing).</summary>
+    public int PartsOf(HairScene scene, float dt, GroomScale scale) => scene.GetComponent<VolumeSettings>()?.PartsOf(dt, scale) ?? 1;
 
     /// <summary>What a pipeline that keeps every system runs when the scene has no volume: all the work, no change.</summary>
     internal static readonly VolumeSettings InertSettings = VolumeSettings.Inert;
 
     private readonly VolumeGrid _grid = new();
     private readonly RestDensityCache _rest = new();
-    private double[] _rho = [], _mx = [], _my = [], _mz = [], _p = [], _gx = [], _gy = [], _gz = [];
+    private double[] _rho = [], _mx = [], _my = [], _mz = [], _p = [], _dx = [], _dy = [], _dz = [], _s = [];
+
+    /// <summary>Below this density (weighted particles per node) a node has no hair to take a mean velocity from.</summary>
+    internal const float MinDensity = 1e-6f;
 
     public VolumeGrid Grid => _grid;
 
@@ -43,7 +49,7 @@ public sealed class VolumeSystem : IHairSystem
         if (_rho.Length < n)
         {
             _rho = new double[n]; _mx = new double[n]; _my = new double[n]; _mz = new double[n];
-            _p = new double[n]; _gx = new double[n]; _gy = new double[n]; _gz = new double[n];
+            _p = new double[n]; _dx = new double[n]; _dy = new double[n]; _dz = new double[n]; _s = new double[n];
         }
         Array.Clear(_rho, 0, n); Array.Clear(_mx, 0, n); Array.Clear(_my, 0, n); Array.Clear(_mz, 0, n);
         int sy = _grid.Nx, sz = _grid.Nx * _grid.Ny;
@@ -73,20 +79,24 @@ public sealed class VolumeSystem : IHairSystem
 
         double invTarget = 1.0 / (settings.Density * (double)rest);
         for (int k = 0; k < n; k++) _p[k] = Math.Max(0.0, _rho[k] * invTarget - 1.0);
+        double dt = ctx.Dt;
+        double push = settings.Stiffness * BendProfile.StandardGravity * dt;
+        double maxPush = VolumeSettings.MaxPushPerPass * _grid.Cell / dt;
+        double f = 1.0 - Math.Exp(-settings.Friction * dt / ctx.Scale.NaturalTime);
+        // At each node, the change a particle there takes: Δv = D − S·v, with D = push + S·(mean velocity), S the friction share.
         for (int z = 0; z < _grid.Nz; z++)
             for (int y = 0; y < _grid.Ny; y++)
                 for (int x = 0; x < _grid.Nx; x++)
                 {
                     int k = x + sy * y + sz * z;
-                    _gx[k] = 0.5 * (P(x + 1, y, z) - P(x - 1, y, z));
-                    _gy[k] = 0.5 * (P(x, y + 1, z) - P(x, y - 1, z));
-                    _gz[k] = 0.5 * (P(x, y, z + 1) - P(x, y, z - 1));
+                    var d = new Vec3d(-push * 0.5 * (P(x + 1, y, z) - P(x - 1, y, z)), -push * 0.5 * (P(x, y + 1, z) - P(x, y - 1, z)),
+                        -push * 0.5 * (P(x, y, z + 1) - P(x, y, z - 1)));
+                    if (d.Length > maxPush) d *= maxPush / d.Length;
+                    double share = 0;
+                    if (_rho[k] > MinDensity) { share = f; d += f / _rho[k] * new Vec3d(_mx[k], _my[k], _mz[k]); }
+                    _dx[k] = d.X; _dy[k] = d.Y; _dz[k] = d.Z; _s[k] = share;
                 }
 
-        double dt = ctx.Dt;
-        double push = settings.Stiffness * BendProfile.StandardGravity * dt;
-        double maxPush = 0.5 * _grid.Cell / dt;
-        double f = 1.0 - Math.Exp(-settings.Friction * dt / ctx.Scale.NaturalTime);
         bool inert = settings.IsInert;
         for (int q = 0; q < w.SheetCount; q++)
         {
@@ -101,38 +111,33 @@ public sealed class VolumeSystem : IHairSystem
                     if (w.InvMass[i] == 0f || !float.IsFinite(w.VelX[i] + w.VelY[i] + w.VelZ[i])) continue;
                     // Each sample gives a push and (where it found hair) a friction pull f·(target − v); a sample with
                     // nothing to give (a pinned or broken particle) gives zero, so strands near it are pushed less.
-                    Evaluate(w, sa, k, out var pushA, out var targetA, out double fa);
-                    Evaluate(w, sb, k, out var pushB, out var targetB, out double fb);
+                    Evaluate(w, sa, k, out var dA, out double sA);
+                    Evaluate(w, sb, k, out var dB, out double sB);
                     var v = new Vec3d(w.VelX[i], w.VelY[i], w.VelZ[i]);
-                    var dv = (1.0 - t) * (pushA + fa * (targetA - v)) + t * (pushB + fb * (targetB - v));
+                    var dv = (1.0 - t) * (dA - sA * v) + t * (dB - sB * v);
                     if (inert) continue;
                     w.VelX[i] = (float)(w.VelX[i] + dv.X); w.VelY[i] = (float)(w.VelY[i] + dv.Y); w.VelZ[i] = (float)(w.VelZ[i] + dv.Z);
                 }
             }
         }
 
-        // The push, the hair's mean velocity and the friction share at particle k of sample strand s (its last particle
-        // if s is shorter); zeros where there is no free, finite particle to sample.
-        void Evaluate(HairWorld w, int s, int k, out Vec3d pushOut, out Vec3d target, out double friction)
+        // D and S at particle k of sample strand s (its last particle if s is shorter); zeros where there is no free,
+        // finite particle to sample.
+        void Evaluate(HairWorld w, int s, int k, out Vec3d d, out double share)
         {
-            pushOut = default; target = default; friction = 0;
+            d = default; share = 0;
             int n = w.StrandParticleCount[s];
             int i = w.StrandFirst[s] + Math.Min(k, n - 1);
             if (w.InvMass[i] == 0f || !float.IsFinite(w.VelX[i] + w.VelY[i] + w.VelZ[i])) return;
             int b = _grid.Locate(w.PosX[i], w.PosY[i], w.PosZ[i], out float fx, out float fy, out float fz);
             if (b < 0) return;
-            double gx = 0, gy = 0, gz = 0, rho = 0, mx = 0, my = 0, mz = 0;
             for (int c = 0; c < 8; c++)
             {
                 int node = b + (c & 1) + ((c & 2) != 0 ? sy : 0) + ((c & 4) != 0 ? sz : 0);
                 double wt = VolumeGrid.Weight(c, fx, fy, fz);
-                gx += wt * _gx[node]; gy += wt * _gy[node]; gz += wt * _gz[node];
-                rho += wt * _rho[node]; mx += wt * _mx[node]; my += wt * _my[node]; mz += wt * _mz[node];
+                d += wt * new Vec3d(_dx[node], _dy[node], _dz[node]);
+                share += wt * _s[node];
             }
-            pushOut = new Vec3d(-push * gx, -push * gy, -push * gz);
-            double len = pushOut.Length;
-            if (len > maxPush) pushOut *= maxPush / len;
-            if (rho > 1e-12) { target = new Vec3d(mx / rho, my / rho, mz / rho); friction = f; }
         }
 
         double P(int x, int y, int z) =>

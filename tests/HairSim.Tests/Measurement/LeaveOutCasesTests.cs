@@ -73,7 +73,12 @@ public class LeaveOutCasesTests
         Assert.Contains(LengthSystem.SystemName, Names("limp hair"));
         Assert.DoesNotContain(LengthSystem.SystemName, Names("no length pass"));
         Assert.Equal([HeadFollowSystem.SystemName, IntegrateSystem.SystemName], Names("bare"));
+        Assert.Equal([VolumeSystem.SystemName, .. Character], Names("hair volume"));
         foreach (var c in LeaveOutCase.All)
-            Assert.Equal(c.Name switch { "game character" => 5, "limp hair" => 5, "bare" => 2, _ => 4 }, Names(c.Name).Length);
+        {
+            bool volume = c.Name.StartsWith("hair volume", StringComparison.Ordinal);
+            Assert.Equal(c.Name switch { "game character" => 5, "limp hair" => 5, "bare" => 2, _ when volume => 6, _ => 4 }, Names(c.Name).Length);
+            Assert.Equal(volume, Names(c.Name).Contains(VolumeSystem.SystemName)); // present only where asked for
+        }
     }
 }
