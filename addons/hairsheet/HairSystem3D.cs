@@ -47,6 +47,10 @@ public partial class HairSystem3D : Node3D
     private float _kineticFriction = 0f;
     private Vector3 _gravity = new Vector3(0f, -9.81f, 0f);
     private int _stepsPerSecond = 60;
+    private bool _hairVolume = false;
+    private float _volumeStiffness = 8f;
+    private float _volumeFriction = 50f;
+    private float _volumeMaxStep = 0.125f;
     private int _renderDensity = 1;
     private Color _rootColor = new Color(0.16f, 0.10f, 0.06f, 1f);
     private Color _tipColor = new Color(0.45f, 0.32f, 0.20f, 1f);
@@ -129,6 +133,17 @@ public partial class HairSystem3D : Node3D
 
     // ---- Rendering ----
     /// <summary>Interpolated render strands between neighbouring simulated strands (Catmull-Rom across the sheet).</summary>
+    // ---- Hair volume ----
+    /// <summary>Strands push apart where packed and drag one another along (docs/volume.md).</summary>
+    [ExportGroup("Hair Volume")]
+    [Export] public bool HairVolume { get => _hairVolume; set { _hairVolume = value; _settings.HairVolume = value; Invalidate(); } }
+    /// <summary>g of push per unit of over-density per cell: 8 = a layer dropped on another rests on it.</summary>
+    [Export(PropertyHint.Range, "0,100,0.1")] public float VolumeStiffness { get => _volumeStiffness; set { _volumeStiffness = value; _settings.VolumeStiffness = value; Invalidate(); } }
+    /// <summary>Friction between strands per natural time: 50 = strands that touch move together.</summary>
+    [Export(PropertyHint.Range, "0,1000,0.1,exp")] public float VolumeFriction { get => _volumeFriction; set { _volumeFriction = value; _settings.VolumeFriction = value; Invalidate(); } }
+    /// <summary>Longest time between volume passes in natural times: 0.125 = once per 60 Hz frame for 25 cm hair; 0.03 keeps layers apart (about 3× the cost).</summary>
+    [Export(PropertyHint.Range, "0.01,1,0.005,exp")] public float VolumeMaxStep { get => _volumeMaxStep; set { _volumeMaxStep = value; _settings.VolumeMaxStep = value; Invalidate(); } }
+
     [ExportGroup("Rendering")]
     [Export(PropertyHint.Range, "0,16,1")] public int RenderDensity { get => _renderDensity; set { _renderDensity = value; _settings.RenderDensity = value; Invalidate(); } }
     [Export] public Color RootColor { get => _rootColor; set { _rootColor = value; _settings.RootColor = value.ToNumerics(); PushLook(); } }
@@ -273,6 +288,7 @@ public partial class HairSystem3D : Node3D
                 scene = GroomBuilder.BuildScene(groom, simSettings);
             }
             scene.Render = _settings.ToRender();
+            if (_settings.ToVolume() is { } volume) scene.SetComponent(volume);
         }
         catch (Exception e) when (e is ArgumentException or System.IO.InvalidDataException)
         {

@@ -89,6 +89,7 @@ public class ExportDefaultsTests
             };
         }
         if (init.StartsWith("BendModel.", StringComparison.Ordinal)) return Enum.Parse<BendModel>(init["BendModel.".Length..]);
+        if (init is "true" or "false") return bool.Parse(init);
         if (init.EndsWith('f')) return Number(init);
         return int.Parse(init, CultureInfo.InvariantCulture);
     }

@@ -137,6 +137,8 @@ public class HairGenerationsTests
             ("KineticFriction", s => s.KineticFriction = 0.4f), ("Gravity", s => s.Gravity = new Vector3(0, -9.80f, 0)),
             ("RenderDensity", s => s.RenderDensity = 0), ("RootWidth", s => s.RootWidth *= 2), ("TipWidth", s => s.TipWidth = 0),
             ("StepsPerSecond", s => s.StepsPerSecond = 120), ("HeadRadii", s => s.HeadRadii *= 1.1f), ("Seed", s => s.Seed++),
+            ("HairVolume", s => s.HairVolume = true), ("VolumeStiffness", s => s.VolumeStiffness = 9f), ("VolumeFriction", s => s.VolumeFriction = 4f),
+            ("VolumeMaxStep", s => s.VolumeMaxStep = 0.03f),
         };
         foreach (var (name, change) in changes)
         {

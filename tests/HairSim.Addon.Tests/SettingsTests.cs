@@ -44,6 +44,22 @@ public class SettingsTests
     }
 
     [Fact]
+    public void Hair_volume_is_off_by_default_and_carries_the_library_s_defaults_when_on()
+    {
+        var s = new HairNodeSettings();
+        Assert.Null(s.ToVolume());
+        s.HairVolume = true;
+        var v = s.ToVolume()!;
+        var lib = new VolumeSettings();
+        Assert.Equal((lib.Stiffness, lib.Friction, lib.MaxStep), (v.Stiffness, v.Friction, v.MaxStep));
+        s.VolumeFriction = float.NaN; s.VolumeMaxStep = 0f; s.VolumeStiffness = -1f;
+        var problems = s.Validate();
+        foreach (var name in new[] { "Volume Stiffness", "Volume Friction", "Volume Max Step" })
+            Assert.Contains(problems, p => p.StartsWith(name, StringComparison.Ordinal));
+        Assert.Throws<HairSettingsException>(() => s.ToVolume());
+    }
+
+    [Fact]
     public void Too_many_particles_is_refused_before_anything_is_allocated()
     {
         var s = new HairNodeSettings { Sheets = 100_000, StrandsPerSheet = 4096, ParticlesPerStrand = 16 };

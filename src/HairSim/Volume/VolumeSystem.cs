@@ -3,15 +3,16 @@ using System.Numerics;
 namespace HairSim;
 
 /// <summary>
-/// Hair volume (<see cref="VolumeSettings"/>), once per frame before the substeps, reference implementation (scalar,
-/// double precision, one thread):
+/// Hair volume (<see cref="VolumeSettings"/>), once per pass before the substeps (a frame longer than
+/// <see cref="VolumeSettings.MaxStep"/> is stepped in parts), reference implementation (scalar, double precision, one thread):
 /// 1. fit a grid to the live particles (cells of <see cref="VolumeSettings.CellSize"/> mean segments);
-/// 2. splat every free particle's weight and momentum to its cell's eight nodes (trilinear): density ρ and momentum m;
-/// 3. at each node, the over-density P = max(0, ρ / ρ₀ − 1), with ρ₀ the target density (a multiple of the rest pose's);
-///    its gradient by central differences;
-/// 4. at each particle, interpolate the gradient, ρ and m (trilinear), then change the velocity by
-///    a pressure push −Stiffness·1 g·∇P·dt (at most half a cell per frame) and a friction pull f·(m/ρ − v) towards the
-///    hair's local mean velocity, f = 1 − e^(−Friction·dt/T₀) with T₀ = √(L / 1 g).
+/// 2. splat the free particles of every <see cref="VolumeSettings.SampleEvery"/>-th strand of a sheet (weight: the
+///    strands each stands for) to their cell's eight nodes (trilinear): density ρ and momentum m;
+/// 3. at each node, the over-density P = max(0, ρ / ρ₀ − 1) (ρ₀ a multiple of the rest pose's median density), its
+///    gradient by central differences, and the change a particle there takes: Δv = D − S·v, with D the push
+///    −Stiffness·1 g·∇P·dt (at most half a cell per pass) plus S·m/ρ, and S = 1 − e^(−Friction·dt/T₀), T₀ = √(L / 1 g);
+/// 4. D and S interpolated at the sample strands' particles, and every strand takes the changes of the two samples
+///    around it, blended by its place in the sheet.
 /// The substeps that follow carry the changed velocities through the strand constraints. Skipped on teleport frames.
 /// </summary>
 public sealed class VolumeSystem : IHairSystem, IFrameSplitter
