@@ -132,6 +132,13 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
     await until(async () => Math.abs((await state()).settings.gravity - 0.5) < 1e-6, 'gravity 0.5 g');
     await page.selectOption('#path', 'Reference');
     await until(async () => (await state()).settings.path === 'Reference', 'the reference path');
+    await page.locator('#volumeFriction').fill('20');
+    await until(async () => (await state()).settings.volumeFriction === 20, 'volume friction 20');
+    await page.check('#volume');
+    await until(async () => (await state()).settings.volume === true, 'hair volume on');
+    await until(async () => (await state()).metrics.nonFinite === 0 && (await state()).frame > 0, 'hair still finite');
+    await page.uncheck('#volume');
+    await until(async () => (await state()).settings.volume === false, 'hair volume off');
   });
 
   it('grows a groom on the mesh head and draws the mesh', async () => {

@@ -82,6 +82,10 @@ public sealed class SettingsRequest
     public float? StaticFriction { get; set; }
     public float? KineticFriction { get; set; }
     public string? Path { get; set; }
+    /// <summary>Hair volume on or off (docs/volume.md); its stiffness and friction as VolumeSettings documents them.</summary>
+    public bool? Volume { get; set; }
+    public float? VolumeStiffness { get; set; }
+    public float? VolumeFriction { get; set; }
 }
 
 public sealed class HeadRequest

@@ -180,6 +180,7 @@ public sealed class StudioSession : IDisposable
                 {
                     Sag = st.Sag, BendDamping = st.BendDamping, Damping = st.Damping, Gravity = -st.Gravity.Y / 9.81f, Substeps = st.Substeps,
                     StaticFriction = st.StaticFriction, KineticFriction = st.KineticFriction, Path = st.Path.ToString(),
+                    Volume = _scene.HasComponent<VolumeSettings>(), VolumeStiffness = _volume.Stiffness, VolumeFriction = _volume.Friction,
                 },
                 new HeadRequest { Position = Arr(_headPosition), Yaw = _yaw, Pitch = _pitch, Roll = _roll, Shake = _shake },
                 colliders.ToArray(), _message);
@@ -372,8 +373,15 @@ public sealed class StudioSession : IDisposable
                 next.Path = path;
             }
             next.Validate();
+            var volume = _volume.Clone();
+            if (r.VolumeStiffness is float vs) volume.Stiffness = vs;
+            if (r.VolumeFriction is float vf) volume.Friction = vf;
+            volume.Validate();
             next.CopyTo(_scene.Settings);
             _scene.SettingsChanged();
+            _volume = volume;
+            if (r.Volume is bool on) _volumeOn = on;
+            ApplyVolume(_scene);
             return Say("Settings applied.");
         }
     }
@@ -419,8 +427,19 @@ public sealed class StudioSession : IDisposable
         _headPosition = Vector3.Zero; _yaw = _pitch = _roll = 0f; _shake = false;
     }
 
+    // Hair volume outlives a new groom or a loaded haircut: it is a setting of the studio, not of the hair.
+    private VolumeSettings _volume = new();
+    private bool _volumeOn;
+
+    private void ApplyVolume(HairScene scene)
+    {
+        if (_volumeOn) scene.SetComponent(_volume.Clone());
+        else scene.RemoveComponent<VolumeSettings>();
+    }
+
     private void Install(HairScene scene, HairWorld? groomWorld, string name)
     {
+        ApplyVolume(scene);
         _scene = scene;
         _sim = new HairSimulation(scene, dispatcher: _threads);
         _history = new EditHistory();

@@ -208,6 +208,7 @@ public sealed class StudioSessionTests : IDisposable
             () => _session.ApplySettings(new SettingsRequest { Gravity = float.NaN }),
             () => _session.ApplySettings(new SettingsRequest { Damping = -1 }),
             () => _session.ApplySettings(new SettingsRequest { Path = "Quantum" }),
+            () => _session.ApplySettings(new SettingsRequest { Sag = 0.2f, Volume = true, VolumeFriction = float.NaN }), // none applied
             () => _session.Load([]),
             () => _session.Load("HSTY but not really a hairstyle"u8),
             () => _session.Load(before.AsSpan(0, before.Length - 9)),
@@ -219,6 +220,7 @@ public sealed class StudioSessionTests : IDisposable
         foreach (var command in refused) Assert.ThrowsAny<ArgumentException>(command);
         Assert.Equal(before, _session.Save());
         Assert.Equal(0.01f, _session.State().Settings.Sag);
+        Assert.False(_session.State().Settings.Volume);
         Assert.Equal(0, _session.State().UndoCount);
     }
 
@@ -263,11 +265,23 @@ public sealed class StudioSessionTests : IDisposable
         Assert.True(head.Shake);
         Assert.Equal(0.05f, head.Position![0]);
 
+        // Hair volume: on with its own stiffness and friction, kept through a new groom, off again.
+        _session.ApplySettings(new SettingsRequest { Volume = true, VolumeStiffness = 12f, VolumeFriction = 30f });
+        Assert.True(_session.State().Settings.Volume);
+        Assert.Equal((12f, 30f), (_session.State().Settings.VolumeStiffness, _session.State().Settings.VolumeFriction));
+        Settle(5);
+        Assert.Equal(0, _session.State().Metrics.NonFinite);
+
         _session.SetGroom(new GroomRequest { Name = "small", StrandsPerSheet = 4 });
         var fresh = _session.State();
         Assert.Equal(480, fresh.Strands);
         Assert.Equal(0, fresh.UndoCount);
         Assert.False(fresh.Head.Shake);
+        Assert.True(fresh.Settings.Volume, "hair volume is a studio setting: a new groom keeps it");
+        Settle(5);
+        Assert.Equal(0, _session.State().Metrics.NonFinite);
+        _session.ApplySettings(new SettingsRequest { Volume = false });
+        Assert.False(_session.State().Settings.Volume);
     }
 
     [Fact]

@@ -185,6 +185,7 @@ class Studio {
     const sliders = {
       sag: { toValue: v => 10 ** (-3 + 3.3 * v / 100), toSlider: s => Math.round(100 * (Math.log10(Math.max(s, 1e-3)) + 3) / 3.3), fmt: v => v.toFixed(3) },
       bendDamping: {}, damping: {}, gravity: { fmt: v => `${v.toFixed(2)} g` }, substeps: {}, staticFriction: {}, kineticFriction: {},
+      volumeStiffness: {}, volumeFriction: {},
     };
     this.sliders = sliders;
     for (const [name, s] of Object.entries(sliders)) {
@@ -198,6 +199,7 @@ class Studio {
       });
     }
     $('path').addEventListener('change', e => this.run(() => command('settings', { path: e.target.value })));
+    $('volume').addEventListener('change', e => this.run(() => command('settings', { volume: e.target.checked })));
     $('show').value = String(this.view.strandStride);
     $('show').addEventListener('change', e => this.view.setStrandStride(+e.target.value));
     $('density').addEventListener('input', e => { $('density-value').textContent = e.target.value; });
@@ -228,6 +230,7 @@ class Studio {
       $(`${name}-value`).textContent = slider.fmt(s.settings[name]);
     }
     if (document.activeElement !== $('path')) $('path').value = s.settings.path;
+    $('volume').checked = !!s.settings.volume;
     $('undo').disabled = s.undoCount === 0;
     $('redo').disabled = s.redoCount === 0;
     $('regrow').disabled = !s.canRegrow;
