@@ -23,7 +23,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     private const int MaxJobs = 1024;
 
     private readonly VolumeGrid _grid = new();
-    private readonly RestDensityCache _rest = new();
+    private readonly VolumeRestCache _rest = new();
     // (ρ, mx, my, mz) per node; every partition is all zeros between frames (the reduce pass clears what it read).
     private readonly Vector128<float>[][] _splat = new Vector128<float>[Partitions][];
     private float[] _p = [];
@@ -36,12 +36,12 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     // Per particle of the sample strands: D and S interpolated there (zeros where nothing was sampled), so a particle's
     // change is Σ t·(D − S·v) over its two samples.
     private float[] _pushX = [], _pushY = [], _pushZ = [], _share = [];
-    private int _every;
+    private int[] _strides = [];
     private readonly Action<int> _boundsJob, _splatJob, _reduceJob, _gradientJob, _gatherJob;
 
     // The frame being run (set before the passes fork).
     private HairWorld _w = null!;
-    private int _jobs, _nodeJobs, _sheetJobs;
+    private int _nodeJobs, _sheetJobs;
     private float _invTarget, _push, _maxPush, _friction;
     private bool _inert;
 
@@ -61,15 +61,17 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         var w = scene.World;
         if (w.StrandCount == 0) return;
         float cell = settings.CellSize * ctx.Scale.Segment;
-        float rest = _rest.Get(w, cell);
+        _rest.Update(w, cell, settings.SampleEvery);
+        float rest = _rest.Density;
         if (!(rest > 0f)) return;
         var dispatcher = ctx.Dispatcher;
         _w = w;
-        _jobs = Math.Min(Math.Min(MaxJobs, w.StrandCount), dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 4);
 
-        dispatcher.Run(_jobs, _boundsJob);
+        _strides = _rest.Strides;
+        _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 4);
+        dispatcher.Run(_sheetJobs, _boundsJob);
         var min = _min[0]; var max = _max[0];
-        for (int j = 1; j < _jobs; j++) { min = Vector3.Min(min, _min[j]); max = Vector3.Max(max, _max[j]); }
+        for (int j = 1; j < _sheetJobs; j++) { min = Vector3.Min(min, _min[j]); max = Vector3.Max(max, _max[j]); }
         if (!_grid.Fit(min, max, cell)) return;
 
         int n = _grid.NodeCount;
@@ -87,7 +89,6 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         _maxPush = (float)(VolumeSettings.MaxPushPerPass * _grid.Cell / dt);
         _friction = (float)(1.0 - Math.Exp(-settings.Friction * dt / ctx.Scale.NaturalTime));
         _inert = settings.IsInert;
-        _every = settings.SampleEvery;
         if (_share.Length != w.ParticleCount)
         {
             int np = w.ParticleCount;
@@ -101,28 +102,26 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         dispatcher.Run(_sheetJobs, _gatherJob);
     }
 
-    private (int Begin, int End) Strands(int job, int jobs)
-    {
-        long n = _w.StrandCount;
-        return ((int)(n * job / jobs), (int)(n * (job + 1) / jobs));
-    }
-
     private (int Begin, int End) Sheets(int job, int jobs)
     {
         long n = _w.SheetCount;
         return ((int)(n * job / jobs), (int)(n * (job + 1) / jobs));
     }
 
+    // Only the sample strands are ever splatted or sampled, so the grid needs to hold only them.
     private void BoundsJob(int job)
     {
         var w = _w;
-        var (begin, end) = Strands(job, _jobs);
+        var (sheetBegin, sheetEnd) = Sheets(job, _sheetJobs);
         var inf = Vector256.Create(float.PositiveInfinity);
         Vector256<float> minX = inf, minY = inf, minZ = inf, maxX = -inf, maxY = -inf, maxZ = -inf;
         var min = new Vector3(float.PositiveInfinity); var max = new Vector3(float.NegativeInfinity);
         ref float px = ref w.PosX[0], py = ref w.PosY[0], pz = ref w.PosZ[0];
-        for (int s = begin; s < end; s++)
+        for (int q = sheetBegin; q < sheetEnd; q++)
+        for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j++)
         {
+            if (!VolumeSampling.IsSample(j, count, _strides[q])) continue;
+            int s = first + j;
             int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s];
             for (; i + 8 <= e; i += 8)
             {
@@ -155,12 +154,11 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         ref var nodes = ref _splat[partition][0];
         float[] posX = w.PosX, posY = w.PosY, posZ = w.PosZ, velX = w.VelX, velY = w.VelY, velZ = w.VelZ, invMass = w.InvMass;
         int[] strandFirst = w.StrandFirst, strandCount = w.StrandParticleCount;
-        int every = _every;
         for (int q = sheetBegin; q < sheetEnd; q++)
         for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j++)
         {
-            if (!VolumeSampling.IsSample(j, count, every)) continue;
-            float weight = (float)VolumeSampling.Weight(count, every);
+            if (!VolumeSampling.IsSample(j, count, _strides[q])) continue;
+            float weight = (float)VolumeSampling.Weight(count, _strides[q]);
             int s = first + j;
             int i = strandFirst[s], e = i + strandCount[s];
             if ((uint)e > (uint)posX.Length || (uint)e > (uint)velX.Length || (uint)e > (uint)invMass.Length
@@ -255,16 +253,15 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     {
         var w = _w;
         var (sheetBegin, sheetEnd) = Sheets(job, _sheetJobs);
-        int every = _every;
         for (int q = sheetBegin; q < sheetEnd; q++)
         {
             int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q];
             for (int j = 0; j < count; j++)
-                if (VolumeSampling.IsSample(j, count, every)) SampleStrand(first + j);
+                if (VolumeSampling.IsSample(j, count, _strides[q])) SampleStrand(first + j);
             if (_inert) continue;
             for (int j = 0; j < count; j++)
             {
-                var (a, b, t) = VolumeSampling.Bracket(j, count, every);
+                var (a, b, t) = VolumeSampling.Bracket(j, count, _strides[q]);
                 Apply(first + j, first + a, first + b, (float)t);
             }
         }
