@@ -77,10 +77,12 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         int n = _grid.NodeCount;
         if (_p.Length < n)
         {
-            for (int p = 0; p < Partitions; p++) _splat[p] = new Vector128<float>[n];
-            _p = new float[n];
-            _sum = new Vector128<float>[n];
-            _change = new Vector128<float>[n];
+            // Room to grow: hair that spreads a little after warm-up does not make a step allocate.
+            int capacity = Math.Min(VolumeGrid.MaxNodes, n + n / 2);
+            for (int p = 0; p < Partitions; p++) _splat[p] = new Vector128<float>[capacity];
+            _p = new float[capacity];
+            _sum = new Vector128<float>[capacity];
+            _change = new Vector128<float>[capacity];
         }
         _nodeJobs = Math.Min(_grid.Nz, dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 2);
         _invTarget = (float)(1.0 / (settings.Density * (double)rest));

@@ -13,6 +13,13 @@ public class AllocationCollection { }
 [Collection(nameof(AllocationCollection))]
 public class FastAllocationTests
 {
+    /// <summary>Hair volume once per frame, or with frames stepped in parts (MaxStep 1/32: four per 60 Hz frame here).</summary>
+    private static void AddVolume(HairScene s, string? volume)
+    {
+        if (volume == "volume") s.SetComponent(new VolumeSettings());
+        else if (volume == "volume in parts") s.SetComponent(new VolumeSettings { MaxStep = 1f / 32 });
+    }
+
     [Theory]
     [InlineData("straight")]
     [InlineData("cut")]
@@ -24,10 +31,14 @@ public class FastAllocationTests
     [InlineData("rest")]
     [InlineData("rest-cut")]
     [InlineData("rest-odd-lengths")]
-    public void SequentialStepAllocatesNothing(string scene, bool render = false)
+    [InlineData("rest", false, "volume")]
+    [InlineData("rest-cut", false, "volume")]
+    [InlineData("rest", false, "volume in parts")]
+    public void SequentialStepAllocatesNothing(string scene, bool render = false, string? volume = null)
     {
         var s = FastPathScenes.Build(scene, SolverPath.Fast);
         if (render) s.Render = new RenderSettings { StrandsPerGap = 2 };
+        AddVolume(s, volume);
         var sim = new HairSimulation(s);
         for (int f = 1; f <= 40; f++) sim.Step(1f / 60f, FastPathScenes.HeadAt(f));
         long before = GC.GetAllocatedBytesForCurrentThread();
@@ -42,10 +53,13 @@ public class FastAllocationTests
     [InlineData("cut", true)]
     [InlineData("rest", false)]
     [InlineData("rest-bent", true)]
-    public void ParallelStepAllocatesNothingOnAnyThread(string scene, bool render)
+    [InlineData("rest", false, "volume")]
+    [InlineData("rest-cut", true, "volume in parts")]
+    public void ParallelStepAllocatesNothingOnAnyThread(string scene, bool render, string? volume = null)
     {
         var s = FastPathScenes.Build(scene, SolverPath.Fast);
         if (render) s.Render = new RenderSettings { StrandsPerGap = 2 }; // render interpolation at each frame's end
+        AddVolume(s, volume);
         const int threads = 2;
         using var dispatcher = new ParallelDispatcher(threads);
         var sim = new HairSimulation(s, dispatcher: dispatcher);
