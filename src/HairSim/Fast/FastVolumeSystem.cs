@@ -41,6 +41,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
 
     // The frame being run (set before the passes fork).
     private HairWorld _w = null!;
+    private FrameContext _ctx = null!;
     private int _nodeJobs, _sheetJobs;
     private float _invTarget, _push, _maxPush, _friction;
     private bool _inert;
@@ -66,6 +67,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         if (!(rest > 0f)) return;
         var dispatcher = ctx.Dispatcher;
         _w = w;
+        _ctx = ctx;
 
         _strides = _rest.Strides;
         _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 4);
@@ -168,9 +170,14 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
                 throw new InvalidOperationException("Strand outside the particle arrays.");
             for (; i < e; i++)
             {
-                if (Unsafe.Add(ref invMass[0], i) == 0f) continue;
                 float px = Unsafe.Add(ref posX[0], i), py = Unsafe.Add(ref posY[0], i), pz = Unsafe.Add(ref posZ[0], i);
                 float vx = Unsafe.Add(ref velX[0], i), vy = Unsafe.Add(ref velY[0], i), vz = Unsafe.Add(ref velZ[0], i);
+                if (Unsafe.Add(ref invMass[0], i) == 0f)
+                {
+                    // A pinned root takes up room and moves with the head (its velocity buffer reads zero).
+                    var v = VolumeSystem.ParticleVelocity(w, i, _ctx);
+                    vx = v.X; vy = v.Y; vz = v.Z;
+                }
                 if (!float.IsFinite(px + py + pz + vx + vy + vz)) continue;
                 int b = Cell(px, py, pz, origin, inv, hx, hy, hz, sy, sz, out float fx, out float fy, out float fz);
                 var value = Vector128.Create(weight, weight * vx, weight * vy, weight * vz);

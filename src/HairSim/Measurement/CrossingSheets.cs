@@ -29,7 +29,7 @@ public static class CrossingSheets
         for (int i = 0; i < Strands; i++)
         {
             float z = (i - (Strands - 1) / 2f) * spacing;
-            for (int k = 0; k < Particles; k++) points[k] = new Vector3(length * k / (Particles - 1), 0.008f * length, z);
+            for (int k = 0; k < Particles; k++) points[k] = new Vector3(length * k / (Particles - 1), 0.0005f * length, z);
             w.SetStrand(i, points, pinned: 1);
             float x = 0.1f * length + i * spacing;
             for (int k = 0; k < Particles; k++) points[k] = new Vector3(x, drop * length, -0.48f * length + length * k / (Particles - 1));

@@ -66,48 +66,45 @@ public sealed class VolumeGrid
     private static float Clamp(float u, float hi) => u >= 0f ? (u <= hi ? u : hi) : 0f;
 
     /// <summary>
-    /// The median density the free particles of the rest pose see (trilinear weights, particles per node,
+    /// The median density the particles of the rest pose see, roots included (trilinear weights, particles per node,
     /// on a grid of <paramref name="cell"/> metres over the rest pose): what <see cref="VolumeSettings.Density"/> is a
     /// multiple of. 0 for a world without free particles. Runs after edits only (allocates).
     /// </summary>
     public static float RestDensity(HairWorld w, float cell)
     {
         var min = new Vector3(float.MaxValue); var max = new Vector3(float.MinValue);
-        int free = 0;
+        int count = 0;
         for (int s = 0; s < w.StrandCount; s++)
             for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
-                if (w.InvMass[i] > 0f)
-                {
-                    var r = new Vector3(w.RestX[i], w.RestY[i], w.RestZ[i]);
-                    if (!float.IsFinite(r.X + r.Y + r.Z)) continue;
-                    min = Vector3.Min(min, r); max = Vector3.Max(max, r); free++;
-                }
+            {
+                var r = new Vector3(w.RestX[i], w.RestY[i], w.RestZ[i]);
+                if (!float.IsFinite(r.X + r.Y + r.Z)) continue;
+                min = Vector3.Min(min, r); max = Vector3.Max(max, r); count++;
+            }
         var grid = new VolumeGrid();
-        if (free == 0 || !grid.Fit(min, max, cell)) return 0f;
+        if (count == 0 || !grid.Fit(min, max, cell)) return 0f;
         var density = new float[grid.NodeCount];
-        int sx = 1, sy = grid.Nx, sz = grid.Nx * grid.Ny;
+        int sy = grid.Nx, sz = grid.Nx * grid.Ny;
         for (int s = 0; s < w.StrandCount; s++)
             for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
-                if (w.InvMass[i] > 0f)
-                {
-                    int b = grid.Locate(w.RestX[i], w.RestY[i], w.RestZ[i], out float fx, out float fy, out float fz);
-                    if (b < 0) continue;
-                    for (int c = 0; c < 8; c++)
-                        density[b + ((c & 1) != 0 ? sx : 0) + ((c & 2) != 0 ? sy : 0) + ((c & 4) != 0 ? sz : 0)] += Weight(c, fx, fy, fz);
-                }
-        var seen = new float[free];
+            {
+                int b = grid.Locate(w.RestX[i], w.RestY[i], w.RestZ[i], out float fx, out float fy, out float fz);
+                if (b < 0) continue;
+                for (int c = 0; c < 8; c++)
+                    density[b + ((c & 1) != 0 ? 1 : 0) + ((c & 2) != 0 ? sy : 0) + ((c & 4) != 0 ? sz : 0)] += Weight(c, fx, fy, fz);
+            }
+        var seen = new float[count];
         int n = 0;
         for (int s = 0; s < w.StrandCount; s++)
             for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
-                if (w.InvMass[i] > 0f)
-                {
-                    int b = grid.Locate(w.RestX[i], w.RestY[i], w.RestZ[i], out float fx, out float fy, out float fz);
-                    if (b < 0) continue;
-                    float d = 0f;
-                    for (int c = 0; c < 8; c++)
-                        d += Weight(c, fx, fy, fz) * density[b + ((c & 1) != 0 ? sx : 0) + ((c & 2) != 0 ? sy : 0) + ((c & 4) != 0 ? sz : 0)];
-                    seen[n++] = d;
-                }
+            {
+                int b = grid.Locate(w.RestX[i], w.RestY[i], w.RestZ[i], out float fx, out float fy, out float fz);
+                if (b < 0) continue;
+                float d = 0f;
+                for (int c = 0; c < 8; c++)
+                    d += Weight(c, fx, fy, fz) * density[b + ((c & 1) != 0 ? 1 : 0) + ((c & 2) != 0 ? sy : 0) + ((c & 4) != 0 ? sz : 0)];
+                seen[n++] = d;
+            }
         if (n == 0) return 0f;
         Array.Sort(seen, 0, n);
         return seen[Math.Min(n - 1, n / 2)];

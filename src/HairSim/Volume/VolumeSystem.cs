@@ -67,14 +67,14 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
                 int s = first + j;
                 for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
                 {
-                    if (w.InvMass[i] == 0f) continue;
                     int b = _grid.Locate(w.PosX[i], w.PosY[i], w.PosZ[i], out float fx, out float fy, out float fz);
-                    if (b < 0 || !float.IsFinite(w.VelX[i] + w.VelY[i] + w.VelZ[i])) continue;
+                    var v = ParticleVelocity(w, i, ctx);
+                    if (b < 0 || !float.IsFinite(v.X + v.Y + v.Z)) continue;
                     for (int c = 0; c < 8; c++)
                     {
                         int node = b + (c & 1) + ((c & 2) != 0 ? sy : 0) + ((c & 4) != 0 ? sz : 0);
                         double wt = weight * VolumeGrid.Weight(c, fx, fy, fz);
-                        _rho[node] += wt; _mx[node] += wt * w.VelX[i]; _my[node] += wt * w.VelY[i]; _mz[node] += wt * w.VelZ[i];
+                        _rho[node] += wt; _mx[node] += wt * v.X; _my[node] += wt * v.Y; _mz[node] += wt * v.Z;
                     }
                 }
             }
@@ -145,6 +145,17 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
 
         double P(int x, int y, int z) =>
             (uint)x < (uint)_grid.Nx && (uint)y < (uint)_grid.Ny && (uint)z < (uint)_grid.Nz ? _p[x + sy * y + sz * z] : 0.0;
+    }
+
+    /// <summary>
+    /// A particle's velocity for the grid: a free particle's own; a pinned root's is the head's motion there over this
+    /// frame (its buffer reads zero): roots are hair too, they take up room and move with the head.
+    /// </summary>
+    internal static Vector3 ParticleVelocity(HairWorld w, int i, FrameContext ctx)
+    {
+        if (w.InvMass[i] != 0f) return new Vector3(w.VelX[i], w.VelY[i], w.VelZ[i]);
+        var end = ctx.HeadEnd.TransformPoint(new Vector3(w.RestX[i], w.RestY[i], w.RestZ[i]));
+        return (end - new Vector3(w.PosX[i], w.PosY[i], w.PosZ[i])) / ctx.Dt;
     }
 
     /// <summary>

@@ -207,11 +207,11 @@ public class VolumeTests
     {
         // MaxStep 1/32: the frame is stepped in parts of at most 5 ms for 25 cm hair, and the falling sheet is stopped by
         // friction and held about a cell above the lower one instead of passing into it: without volume about half the
-        // crossings sink (the control test above); with it at most about 6 % in the committed runs (docs/volume.md: not
+        // crossings sink (the control test above); with it at most about 2 % in the committed runs (docs/volume.md: not
         // yet none, which is the target).
         var r = CrossingSheets.Run(new VolumeSettings { MaxStep = 1f / 32 }, path, hz);
         Assert.True(r.Crossings >= 100, $"the sheets still cross ({r.Crossings})");
-        Assert.True(r.Sunk <= 0.07 * r.Crossings, $"{r.Sunk} of {r.Crossings} crossings sank");
+        Assert.True(r.Sunk <= 0.04 * r.Crossings, $"{r.Sunk} of {r.Crossings} crossings sank");
         Assert.True(r.MeanGap > 0.05, $"B rests above A (mean gap {r.MeanGap:P1} of the length)");
         Assert.Equal(0, r.NonFinite);
     }
