@@ -92,5 +92,9 @@ public static class SvgExport
     }
 
     public static void Write(string path, HairScene scene, View view, float extent = 0.6f, int pixels = 600, bool[]? highlight = null, string? title = null, int every = 1) =>
-        CurveExport.WriteText(path, o => Write(o, scene, view, extent, pixels, highlight, title, every));
+        SafeFile.Write(path, s =>
+        {
+            using var o = new StreamWriter(s, new System.Text.UTF8Encoding(false), 1 << 16, leaveOpen: true);
+            Write(o, scene, view, extent, pixels, highlight, title, every);
+        });
 }
