@@ -251,8 +251,8 @@ public sealed partial class FastLengthSystem : IHairSystem
     }
 
     /// <summary>The rest of a sweep from row <paramref name="k0"/>, when some neighbours coincide: the general row step with the reference's fallback axis.</summary>
-    [MethodImpl(MethodImplOptions.NoInlining)]
     /// <remarks>Chains c0 … c3 are the tile's 8-lane vectors in order (c2, c3 unused in a 16-lane tile).</remarks>
+    [MethodImpl(MethodImplOptions.NoInlining)]
     [SkipLocalsInit]
     private static void SweepWithFallback(HairWorld w, scoped StrandScratch t, ReadOnlySpan<int> firsts, int rows, int k0, float h, float damping,
         in PoseLanes head, Chain c0, Chain c1, Chain c2, Chain c3)

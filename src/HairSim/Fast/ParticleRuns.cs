@@ -33,7 +33,7 @@ internal static class ParticleRuns
     public static bool WideAvailable => FastPathInfo.Avx512;
 
     /// <summary>
-    /// As <see cref="ForEachLive{TKernel}"/>, but whole 16-particle chunks go through the kernel's 16-lane chunk
+    /// As <see cref="ForEachLive{TKernel}(HairWorld, int, int, ref TKernel)"/>, but whole 16-particle chunks go through the kernel's 16-lane chunk
     /// when <paramref name="wide"/> (the rest of a run through the 8-lane one).
     /// </summary>
     public static void ForEachLiveWide<TKernel>(HairWorld w, int begin, int end, ref TKernel kernel, bool wide) where TKernel : struct, IWideParticleKernel =>

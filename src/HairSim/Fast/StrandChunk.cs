@@ -25,9 +25,9 @@ internal readonly ref struct StrandChunk
         InvMass = FastLengthSystem.TM, RestLength = FastLengthSystem.TL,
         // From here on the length tile's PBD-only fields are reused (a chunk never runs PBD).
         VelX = 8, VelY = 9, VelZ = 10, ShapePrev = 11, ShapeMid = 12, ShapeNext = 13, RestX = 14, RestY = 15, RestZ = 16,
-        /// <summary>Shape-matching goals (prev, mid, next) × xyz, rows −1 … 16 (see <see cref="GoalRow"/>).</summary>
+        // Shape-matching goals (prev, mid, next) × xyz, rows −1 … 16 (see GoalRow).
         Goals = 17,
-        /// <summary>The bend sweep's per-strand rest directions and joint shares (FastBendSystem), filled per chunk.</summary>
+        // The bend sweep's per-strand rest directions and joint shares (FastBendSystem), filled per chunk.
         BendRestX = 26, BendRestY = 27, BendRestZ = 28, BendA = 29, BendB = 30, FieldCount = 31;
 
     /// <summary>Rows −1 … 16: goal rows past both ends stay zero, so goal sums need no masks.</summary>

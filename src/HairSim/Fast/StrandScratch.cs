@@ -3,7 +3,7 @@ using System.Numerics;
 namespace HairSim.Fast;
 
 /// <summary>
-/// Scratch for per-strand kernels and length tiles: <see cref="Fields"/> slices of <see cref="Stride"/> floats.
+/// Scratch for per-strand kernels and length tiles: a number of slices (fields, see <see cref="Size"/>) of <see cref="Stride"/> floats.
 /// Field f starts at <see cref="Offset"/>(f); indices −Width … −1 of each slice are valid too, so kernels can read
 /// one particle before the root without a branch. Callers put it on the stack (stackalloc, up to
 /// <see cref="StackFloats"/>), so a step allocates nothing on any thread, ever; only scratch for very long strands
