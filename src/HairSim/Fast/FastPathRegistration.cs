@@ -17,6 +17,7 @@ internal static partial class FastPathRegistration
                 BendSystem.SystemName => s => new FastBendSystem(s.World, allowWide),
                 LengthSystem.SystemName => s => new FastLengthSystem(s.World.MaxStrandCapacity, allowWide),
                 CollideSystem.SystemName => _ => new FastCollideSystem(allowWide),
+                Meshes.MeshCollideSystem.SystemName => s => new FastMeshCollideSystem(s),
                 SegmentCollideSystem.SystemName => _ => new FastSegmentCollideSystem(),
                 InterpolateSystem.SystemName => s => new FastInterpolateSystem(s),
                 VolumeSystem.SystemName => _ => new FastVolumeSystem(),

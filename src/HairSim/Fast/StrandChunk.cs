@@ -48,10 +48,12 @@ internal readonly ref struct StrandChunk
     /// hold no particle of the strand; they are masked like the particles past a cut and never stored.
     /// </summary>
     public readonly int Height;
+    /// <summary>The world index of the strand in lane 0 (lane l holds strand FirstStrand + l).</summary>
+    public readonly int FirstStrand;
 
-    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, ulong pinnedRows, int height = Rows)
+    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, ulong pinnedRows, int height = Rows, int firstStrand = 0)
     {
-        Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height;
+        Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height; FirstStrand = firstStrand;
     }
 
     /// <summary>Row <paramref name="row"/> of a particle field.</summary>
@@ -249,7 +251,7 @@ internal sealed class StrandChunkRunner
             Load(w.ShapeNext, first, height, tile, StrandChunk.ShapeNext);
         }
         ulong pinned = (_needs & ChunkFields.PinRest) != 0 ? PinnedRows(tile, height) : 0;
-        var chunk = new StrandChunk(tile, firsts, pinned, height);
+        var chunk = new StrandChunk(tile, firsts, pinned, height, s0);
         foreach (var c in _chunkSystems) c.PrepareChunk(w, s0, chunk);
         // The next chunk's data is fetched from memory while this one computes, a slice after each system.
         var prefetch = new Prefetcher(w, first + StrandChunk.Lanes * height, height, _needs);

@@ -43,39 +43,58 @@ public sealed class MeshCollideSystem : IHairSystem
     {
         var mc = scene.GetComponent<MeshCollider>();
         if (mc == null) return;
-        var w = scene.World;
         var head = ctx.HeadAt(substep);
-        // Head space once per call: local = Rᵀ(p − t).
-        var toLocal = Matrix4x4.CreateFromQuaternion(Quaternion.Conjugate(head.Rotation));
-        var toWorld = Matrix4x4.CreateFromQuaternion(head.Rotation);
-        var t = head.Position;
+        Collide(scene.World, mc, new Pose(head), ctx.Settings.ContactSlide, begin, end);
+    }
+
+    /// <summary>
+    /// The head pose as a rotation matrix both ways (built once per call): local = Rᵀ(p − t), world = R·local + t. The
+    /// vectorised kernel (FastMeshCollideSystem) builds the same matrices and does every operation below in the same
+    /// order, so the two give the same bits.
+    /// </summary>
+    internal readonly struct Pose(RigidTransform head)
+    {
+        public readonly Fast.PoseLanes ToLocal = Fast.PoseLanes.InverseRotation(head.Rotation), ToWorld = new(head.Rotation, head.Position);
+        public readonly Vector3 T = head.Position;
+    }
+
+    /// <summary>The threshold below which a segment's midpoint can be inside: margin + 1-Lipschitz slack of the trilinear field.</summary>
+    internal static float MidpointThreshold(MeshCollider mc) => mc.Margin + (0.1f * mc.Field.CellSize + 1e-5f);
+
+    internal static void Collide(HairWorld w, MeshCollider mc, in Pose pose, float slide, int begin, int end)
+    {
         var field = mc.Field;
-        float margin = mc.Margin, slide = ctx.Settings.ContactSlide, slack = 0.1f * field.CellSize + 1e-5f;
+        float margin = mc.Margin, threshold = MidpointThreshold(mc);
         for (int s = begin; s < end; s++)
         {
             int first = w.StrandFirst[s], last = first + w.StrandParticleCount[s];
             float previous = float.MaxValue;
             for (int i = first; i < last; i++)
             {
-                float d = PushOut(w, field, i, t, toLocal, toWorld, margin, slide);
+                float d = PushOut(w, field, i, pose, margin, slide);
                 // The segment's midpoint can only be inside if an end is within half a segment of the surface (the
                 // field is 1-Lipschitz up to trilinear slack): most segments skip the second sample.
-                if (i > first && MathF.Max(previous, d) - 0.5f * w.RestLength[i] < margin + slack)
+                if (i > first && MathF.Max(previous, d) - 0.5f * w.RestLength[i] < threshold)
                 {
-                    var mid = Vector3.TransformNormal(0.5f * (w.GetPosition(i - 1) + w.GetPosition(i)) - t, toLocal);
-                    float dm = field.Sample(mid, out var gm);
-                    if (dm < margin && gm.LengthSquared() > 1e-12f)
+                    float mx = 0.5f * (w.PosX[i - 1] + w.PosX[i]) - pose.T.X, my = 0.5f * (w.PosY[i - 1] + w.PosY[i]) - pose.T.Y,
+                        mz = 0.5f * (w.PosZ[i - 1] + w.PosZ[i]) - pose.T.Z;
+                    var mid = pose.ToLocal.Direction(new Vector3(mx, my, mz));
+                    float dm = field.SampleAt(mid.X, mid.Y, mid.Z, out float gx, out float gy, out float gz);
+                    float g2 = gx * gx + gy * gy + gz * gz;
+                    if (dm < margin && g2 > 1e-12f)
                     {
-                        var push = Vector3.TransformNormal(Vector3.Normalize(gm), toWorld);
+                        float len = MathF.Sqrt(g2);
+                        var push = pose.ToWorld.Direction(new Vector3(gx / len, gy / len, gz / len));
+                        float amount = margin - dm;
                         for (int j = i - 1; j <= i; j++)
                         {
                             if (w.InvMass[j] == 0f) continue;
-                            w.PutPosition(j, w.GetPosition(j) + push * (margin - dm));
+                            w.PosX[j] += push.X * amount; w.PosY[j] += push.Y * amount; w.PosZ[j] += push.Z * amount;
                             RemoveInward(w, j, push, slide);
                         }
                         // Lifting a segment over a thin part (an ear) can push an end into it from the other side.
-                        PushOut(w, field, i - 1, t, toLocal, toWorld, margin, slide);
-                        d = PushOut(w, field, i, t, toLocal, toWorld, margin, slide);
+                        PushOut(w, field, i - 1, pose, margin, slide);
+                        d = PushOut(w, field, i, pose, margin, slide);
                     }
                 }
                 previous = d;
@@ -84,28 +103,31 @@ public sealed class MeshCollideSystem : IHairSystem
     }
 
     /// <summary>Pushes particle i out to the margin (up to three steps: in a crease one push can land in the other part); returns its distance.</summary>
-    private static float PushOut(HairWorld w, SignedDistanceField field, int i, Vector3 t, in Matrix4x4 toLocal, in Matrix4x4 toWorld, float margin, float slide)
+    private static float PushOut(HairWorld w, SignedDistanceField field, int i, in Pose pose, float margin, float slide)
     {
-        var local = Vector3.TransformNormal(w.GetPosition(i) - t, toLocal);
-        float d = field.Distance(local);
+        var local = pose.ToLocal.Direction(new Vector3(w.PosX[i] - pose.T.X, w.PosY[i] - pose.T.Y, w.PosZ[i] - pose.T.Z));
+        float d = field.DistanceAt(local.X, local.Y, local.Z);
         if (d >= margin || w.InvMass[i] == 0f) return d;
         for (int it = 0; it < 3 && d < margin; it++)
         {
-            field.Sample(local, out var g);
-            if (g.LengthSquared() <= 1e-12f) break;
-            var n = Vector3.Normalize(g);
-            local += n * (margin - d);
-            RemoveInward(w, i, Vector3.TransformNormal(n, toWorld), slide);
-            d = field.Distance(local);
+            field.SampleAt(local.X, local.Y, local.Z, out float gx, out float gy, out float gz);
+            float g2 = gx * gx + gy * gy + gz * gz;
+            if (!(g2 > 1e-12f)) break;
+            float len = MathF.Sqrt(g2), amount = margin - d;
+            float nx = gx / len, ny = gy / len, nz = gz / len;
+            local = new Vector3(local.X + nx * amount, local.Y + ny * amount, local.Z + nz * amount);
+            RemoveInward(w, i, pose.ToWorld.Direction(new Vector3(nx, ny, nz)), slide);
+            d = field.DistanceAt(local.X, local.Y, local.Z);
         }
-        w.PutPosition(i, t + Vector3.TransformNormal(local, toWorld));
+        var p = pose.ToWorld.Point(local);
+        w.PosX[i] = p.X; w.PosY[i] = p.Y; w.PosZ[i] = p.Z;
         return d;
     }
 
     private static void RemoveInward(HairWorld w, int i, Vector3 normal, float slide)
     {
-        var v = w.GetVelocity(i);
-        float vn = Vector3.Dot(v, normal);
-        if (vn < 0f) w.PutVelocity(i, (v - vn * normal) * slide);
+        float vx = w.VelX[i], vy = w.VelY[i], vz = w.VelZ[i];
+        float vn = vx * normal.X + vy * normal.Y + vz * normal.Z;
+        if (vn < 0f) { w.VelX[i] = (vx - vn * normal.X) * slide; w.VelY[i] = (vy - vn * normal.Y) * slide; w.VelZ[i] = (vz - vn * normal.Z) * slide; }
     }
 }

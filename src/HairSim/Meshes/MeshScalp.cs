@@ -86,8 +86,9 @@ public static class MeshScalp
             if (u + v > 1f) { u = 1f - u; v = 1f - v; }
             points[k] = (a + u * (b - a) + v * (c - a), mesh.FaceNormal(t));
         }
-        // A scalp triangle inside another part of the mesh (an ear modelled into the head) grows nothing.
-        points = points.Where(c => field.Distance(c.P) > -0.5f * field.CellSize).ToArray();
+        // A scalp triangle inside another part of the mesh (an ear modelled into the head) grows nothing, nor does one
+        // so close to another part that its lifted root would be in it (roots are pinned: collision cannot move them).
+        points = points.Where(c => field.Distance(c.P) > -0.5f * field.CellSize && field.Distance(c.P + c.N * g.RootLift) > 0.5f * g.RootLift).ToArray();
         float spacing = (float)Math.Sqrt(total / want) * 0.9f;
         List<(Vector3 P, Vector3 N)> roots;
         do { roots = Thin(points, spacing); spacing *= 0.9f; } while (roots.Count < want && spacing > 1e-6f);

@@ -21,7 +21,67 @@ public sealed class SignedDistanceField
     private SignedDistanceField(Vector3 origin, float cell, int nx, int ny, int nz, float[] d, TimeSpan bake)
     {
         Origin = origin; CellSize = cell; Nx = nx; Ny = ny; Nz = nz; _d = d; BakeTime = bake;
+        InvCell = 1f / cell;
+        _band = BandCells * cell;
+        _hx = nx - 1; _hy = ny - 1; _hz = nz - 1;
+        (Bricks, BricksX, BricksY) = BuildBricks(d, nx, ny, nz);
     }
+
+    /// <summary>1 / <see cref="CellSize"/>: grid coordinates are (p − origin) · InvCell.</summary>
+    internal readonly float InvCell;
+    private readonly float _band, _hx, _hy, _hz;
+
+    /// <summary>The distances, x fastest then y then z (not a copy: for the collision kernels).</summary>
+    internal float[] Data => _d;
+
+    /// <summary>Cells per brick edge, as a shift: a brick is 4 × 4 × 4 cells.</summary>
+    internal const int BrickShift = 2;
+
+    /// <summary>
+    /// For each brick of 4 × 4 × 4 cells, a lower bound of the field anywhere in it: the least of its corner values,
+    /// less a few float roundings (a trilinear value lies between its cell's corner values up to rounding). The
+    /// collision kernels skip the eight-value sample of particles whose brick says they are far enough away.
+    /// </summary>
+    internal readonly float[] Bricks;
+    internal readonly int BricksX, BricksY;
+
+    private static (float[] Bricks, int Bx, int By) BuildBricks(float[] d, int nx, int ny, int nz)
+    {
+        const int B = 1 << BrickShift;
+        int bx = (nx - 2) / B + 1, by = (ny - 2) / B + 1, bz = (nz - 2) / B + 1; // bricks over the cells 0 … n − 2
+        var bricks = new float[bx * by * bz];
+        Array.Fill(bricks, float.MaxValue);
+        float largest = 0f;
+        // Node (x, y, z) is a corner of the cells x − 1 and x along each axis: it bounds the bricks holding those cells.
+        for (int z = 0; z < nz; z++)
+        {
+            int z0 = Math.Max(0, z - 1) >> BrickShift, z1 = Math.Min(nz - 2, z) >> BrickShift;
+            for (int y = 0; y < ny; y++)
+            {
+                int y0 = Math.Max(0, y - 1) >> BrickShift, y1 = Math.Min(ny - 2, y) >> BrickShift;
+                for (int x = 0; x < nx; x++)
+                {
+                    float v = d[x + nx * (y + ny * z)];
+                    largest = MathF.Max(largest, MathF.Abs(v));
+                    int x0 = Math.Max(0, x - 1) >> BrickShift, x1 = Math.Min(nx - 2, x) >> BrickShift;
+                    for (int k = z0; k <= z1; k++)
+                        for (int j = y0; j <= y1; j++)
+                            for (int i = x0; i <= x1; i++)
+                            {
+                                ref float b = ref bricks[i + bx * (j + by * k)];
+                                if (v < b) b = v;
+                            }
+                }
+            }
+        }
+        // Three lerps, each within an ulp or so of the largest value it mixes: a margin far above that.
+        float slack = 1e-5f * largest + 1e-9f;
+        for (int i = 0; i < bricks.Length; i++) bricks[i] -= slack;
+        return (bricks, bx, by);
+    }
+
+    /// <summary>The lower bound of the field in the brick holding grid cell (x, y, z).</summary>
+    internal float BrickBound(int x, int y, int z) => Bricks[(x >> BrickShift) + BricksX * ((y >> BrickShift) + BricksY * (z >> BrickShift))];
 
     public Vector3 Origin { get; }
     public float CellSize { get; }
@@ -209,39 +269,67 @@ public sealed class SignedDistanceField
         return new SignedDistanceField(origin, cellSize, nx, ny, nz, (float[])distances.Clone(), TimeSpan.Zero);
     }
 
-    /// <summary>Signed distance at p (metres; negative inside), trilinear between cells; +band outside the grid.</summary>
-    public float Distance(Vector3 p)
+    /// <summary>
+    /// Signed distance at p (metres; negative inside), trilinear between cells. Outside the grid (which holds the whole
+    /// surface) the distance to the grid, and at least the band: a lower bound of the distance to the surface, so hair
+    /// hanging far below a head is known to be far from it.
+    /// </summary>
+    public float Distance(Vector3 p) => DistanceAt(p.X, p.Y, p.Z);
+
+    /// <summary>The value outside the grid, from grid coordinates (see <see cref="Distance(Vector3)"/>).</summary>
+    private float Outside(float gx, float gy, float gz)
     {
-        var g = (p - Origin) / CellSize;
-        if (!(g.X >= 0f && g.Y >= 0f && g.Z >= 0f && g.X < Nx - 1 && g.Y < Ny - 1 && g.Z < Nz - 1)) return Band;
-        int x = (int)g.X, y = (int)g.Y, z = (int)g.Z;
-        float fx = g.X - x, fy = g.Y - y, fz = g.Z - z;
-        int i = x + Nx * (y + Ny * z), sy = Nx, sz = Nx * Ny;
-        float x00 = _d[i] + fx * (_d[i + 1] - _d[i]), x10 = _d[i + sy] + fx * (_d[i + sy + 1] - _d[i + sy]);
-        float x01 = _d[i + sz] + fx * (_d[i + sz + 1] - _d[i + sz]), x11 = _d[i + sz + sy] + fx * (_d[i + sz + sy + 1] - _d[i + sz + sy]);
+        float dx = MathF.Max(MathF.Max(-gx, gx - _hx), 0f), dy = MathF.Max(MathF.Max(-gy, gy - _hy), 0f), dz = MathF.Max(MathF.Max(-gz, gz - _hz), 0f);
+        return MathF.Max(_band, MathF.Sqrt(dx * dx + dy * dy + dz * dz) * CellSize);
+    }
+
+    /// <summary>
+    /// <see cref="Distance(Vector3)"/> with every operation written out, in the order the vectorised collision kernel
+    /// (FastMeshCollideSystem) does them, so both give the same bits.
+    /// </summary>
+    internal float DistanceAt(float px, float py, float pz)
+    {
+        float gx = (px - Origin.X) * InvCell, gy = (py - Origin.Y) * InvCell, gz = (pz - Origin.Z) * InvCell;
+        if (!(gx >= 0f && gy >= 0f && gz >= 0f && gx < _hx && gy < _hy && gz < _hz)) return Outside(gx, gy, gz);
+        int x = (int)gx, y = (int)gy, z = (int)gz;
+        float fx = gx - x, fy = gy - y, fz = gz - z;
+        int i = x + Nx * y + Nx * Ny * z, sy = Nx, sz = Nx * Ny;
+        var d = _d;
+        float x00 = d[i] + fx * (d[i + 1] - d[i]), x10 = d[i + sy] + fx * (d[i + sy + 1] - d[i + sy]);
+        float x01 = d[i + sz] + fx * (d[i + sz + 1] - d[i + sz]), x11 = d[i + sz + sy] + fx * (d[i + sz + sy + 1] - d[i + sz + sy]);
         float y0 = x00 + fy * (x10 - x00), y1 = x01 + fy * (x11 - x01);
         return y0 + fz * (y1 - y0);
     }
 
-    /// <summary>Signed distance and its gradient (not normalised) at p.</summary>
+    /// <summary>Signed distance and its gradient (not normalised) at p; outside the grid, <see cref="Distance(Vector3)"/>'s value and a zero gradient.</summary>
     public float Sample(Vector3 p, out Vector3 gradient)
     {
-        var g = (p - Origin) / CellSize;
-        if (!(g.X >= 0f && g.Y >= 0f && g.Z >= 0f && g.X < Nx - 1 && g.Y < Ny - 1 && g.Z < Nz - 1))
+        float d = SampleAt(p.X, p.Y, p.Z, out float gx, out float gy, out float gz);
+        gradient = new Vector3(gx, gy, gz);
+        return d;
+    }
+
+    /// <summary><see cref="Sample(Vector3, out Vector3)"/> written out as the vectorised kernel does it (see <see cref="DistanceAt"/>).</summary>
+    internal float SampleAt(float px, float py, float pz, out float gradX, out float gradY, out float gradZ)
+    {
+        float gx = (px - Origin.X) * InvCell, gy = (py - Origin.Y) * InvCell, gz = (pz - Origin.Z) * InvCell;
+        if (!(gx >= 0f && gy >= 0f && gz >= 0f && gx < _hx && gy < _hy && gz < _hz))
         {
-            gradient = Vector3.Zero;
-            return Band;   // outside the grid: farther than the band from the surface
+            gradX = gradY = gradZ = 0f;
+            return Outside(gx, gy, gz);   // outside the grid: farther than the band from the surface
         }
-        int x = (int)g.X, y = (int)g.Y, z = (int)g.Z;
-        float fx = g.X - x, fy = g.Y - y, fz = g.Z - z;
-        int i = x + Nx * (y + Ny * z), sy = Nx, sz = Nx * Ny;
-        float d000 = _d[i], d100 = _d[i + 1], d010 = _d[i + sy], d110 = _d[i + sy + 1];
-        float d001 = _d[i + sz], d101 = _d[i + sz + 1], d011 = _d[i + sz + sy], d111 = _d[i + sz + sy + 1];
+        int x = (int)gx, y = (int)gy, z = (int)gz;
+        float fx = gx - x, fy = gy - y, fz = gz - z;
+        int i = x + Nx * y + Nx * Ny * z, sy = Nx, sz = Nx * Ny;
+        var d = _d;
+        float d000 = d[i], d100 = d[i + 1], d010 = d[i + sy], d110 = d[i + sy + 1];
+        float d001 = d[i + sz], d101 = d[i + sz + 1], d011 = d[i + sz + sy], d111 = d[i + sz + sy + 1];
         float x00 = d000 + fx * (d100 - d000), x10 = d010 + fx * (d110 - d010), x01 = d001 + fx * (d101 - d001), x11 = d011 + fx * (d111 - d011);
         float y0 = x00 + fy * (x10 - x00), y1 = x01 + fy * (x11 - x01);
-        float gx = (1 - fz) * ((1 - fy) * (d100 - d000) + fy * (d110 - d010)) + fz * ((1 - fy) * (d101 - d001) + fy * (d111 - d011));
-        float gy = (1 - fz) * (x10 - x00) + fz * (x11 - x01);
-        gradient = new Vector3(gx, gy, y1 - y0) / CellSize;
+        float ux = 1f - fy, uz = 1f - fz;
+        gradX = (uz * (ux * (d100 - d000) + fy * (d110 - d010)) + fz * (ux * (d101 - d001) + fy * (d111 - d011))) * InvCell;
+        gradY = (uz * (x10 - x00) + fz * (x11 - x01)) * InvCell;
+        gradZ = (y1 - y0) * InvCell;
         return y0 + fz * (y1 - y0);
     }
 

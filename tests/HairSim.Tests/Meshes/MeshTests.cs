@@ -34,7 +34,7 @@ public sealed class MeshTests
             Assert.True(Vector3.Dot(Vector3.Normalize(g), dir) > 0.98f, $"gradient {g} at {p}");
         }
         Assert.InRange(sdf.Distance(Vector3.Zero), -1.1f * r, -0.9f * r);   // deep inside: the chamfer continuation
-        Assert.Equal(sdf.Band, sdf.Distance(new Vector3(0.5f, 0, 0))); // outside the grid
+        Assert.True(sdf.Distance(new Vector3(0.5f, 0, 0)) > 0.3f); // outside the grid: at least the distance to it
     }
 
     [Fact]

@@ -1,0 +1,344 @@
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
+using System.Runtime.Intrinsics;
+using System.Runtime.Intrinsics.X86;
+using HairSim.Meshes;
+
+namespace HairSim.Fast;
+
+/// <summary>
+/// Fast <see cref="MeshCollideSystem"/>: on strand chunks, 8 strands at a time (AVX2 gathers of the distance field),
+/// each lane walking its strand from root to tip exactly as the reference does (particle push, then the segment's
+/// midpoint test with both ends pushed again), with every operation in the reference's order, so a chunk gives the
+/// reference's bits (tested). Most particles are far from the mesh: a 4 × 4 × 4-cell brick's lower bound of the
+/// field (<see cref="SignedDistanceField.Bricks"/>, one gather from a small table) settles them without the
+/// eight-value sample. The bound only skips samples whose result could not change a decision: a particle whose
+/// brick lies farther than the margin plus half the chunk's longest segment (plus the trilinear slack) is neither
+/// pushed nor starts a midpoint test, and a midpoint whose brick lies beyond the margin is not pushed. Strands outside
+/// chunks (and machines without AVX-512) go through the reference system.
+/// </summary>
+public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
+{
+    private readonly MeshCollideSystem _reference = new();
+    private readonly HairScene? _scene;
+    private MeshCollideSystem.Pose[] _poses = [];
+    private MeshCollider? _collider;
+
+    /// <param name="scene">The scene this pipeline steps: its collider is looked up once per frame instead of once per chunk.</param>
+    public FastMeshCollideSystem(HairScene? scene = null) => _scene = scene;
+
+    public string Name => MeshCollideSystem.SystemName;
+    public SystemPhase Phase => SystemPhase.Substep;
+
+    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end) => _reference.Run(scene, ctx, substep, begin, end);
+
+    bool IStrandChunkSystem.SupportsChunks => FastPathInfo.Avx512 && Avx2.IsSupported;
+    ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
+    /// <summary>Particles past a cut arrive as pins (never pushed); midpoints are tested only between live particles, as the reference does.</summary>
+    bool IStrandChunkSystem.TakesCutStrands => true;
+
+    bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
+    {
+        if (_poses.Length < ctx.Substeps) _poses = new MeshCollideSystem.Pose[ctx.Substeps];
+        for (int s = 0; s < ctx.Substeps; s++) _poses[s] = new MeshCollideSystem.Pose(ctx.HeadAt(s));
+        _collider = _scene?.GetComponent<MeshCollider>();
+        return true;
+    }
+
+    unsafe bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    {
+        var mc = ReferenceEquals(scene, _scene) ? _collider : scene.GetComponent<MeshCollider>();
+        if (mc == null) return true;
+        var field = mc.Field;
+        const int L = StrandChunk.Lanes;
+        // The longest segment of the chunk (rows 1 … height − 1 hold the segments' rest lengths).
+        ref float rest0 = ref chunk.Row(StrandChunk.RestLength, 0);
+        var longest = Vector256<float>.Zero;
+        for (int i = L, n = chunk.Height * L; i < n; i += 8) longest = Vector256.Max(longest, Vector256.LoadUnsafe(ref rest0, (nuint)i));
+        float maxRest = 0f;
+        for (int l = 0; l < 8; l++) maxRest = MathF.Max(maxRest, longest.GetElement(l));
+        ref int live = ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(scene.World.StrandParticleCount), chunk.FirstStrand);
+        fixed (float* data = field.Data, bricks = field.Bricks)
+        {
+            var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in _poses[substep]);
+            var rows = new Rows(chunk);
+            for (int g = 0; g < L; g += 8)
+                k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
+        }
+        return true;
+    }
+
+    /// <summary>The chunk's rows the kernel reads and writes (row k of a field starts k · 32 floats after its row 0).</summary>
+    private readonly ref struct Rows(StrandChunk chunk)
+    {
+        public readonly ref float X = ref chunk.Row(StrandChunk.X, 0), Y = ref chunk.Row(StrandChunk.Y, 0), Z = ref chunk.Row(StrandChunk.Z, 0);
+        public readonly ref float Vx = ref chunk.Row(StrandChunk.VelX, 0), Vy = ref chunk.Row(StrandChunk.VelY, 0), Vz = ref chunk.Row(StrandChunk.VelZ, 0);
+        public readonly ref float M = ref chunk.Row(StrandChunk.InvMass, 0), Rest = ref chunk.Row(StrandChunk.RestLength, 0);
+    }
+
+    private unsafe readonly struct Kernel
+    {
+        private readonly float* _d, _bricks;
+        private readonly int _sy, _sz;
+        private readonly Vector256<float> _ox, _oy, _oz, _inv, _cell, _hx, _hy, _hz, _band, _margin, _threshold, _far, _slide, _tx, _ty, _tz;
+        private readonly Vector256<float> _l00, _l01, _l02, _l10, _l11, _l12, _l20, _l21, _l22;
+        private readonly Vector256<float> _w00, _w01, _w02, _w10, _w11, _w12, _w20, _w21, _w22;
+        private readonly Vector256<int> _nx, _nxy, _bx, _bxy;
+
+        public Kernel(MeshCollider mc, float* d, float* bricks, float maxRest, float slide, in MeshCollideSystem.Pose pose)
+        {
+            var f = mc.Field;
+            _d = d; _bricks = bricks;
+            _sy = f.Nx; _sz = f.Nx * f.Ny;
+            _ox = Vector256.Create(f.Origin.X); _oy = Vector256.Create(f.Origin.Y); _oz = Vector256.Create(f.Origin.Z);
+            _inv = Vector256.Create(f.InvCell); _cell = Vector256.Create(f.CellSize);
+            _hx = Vector256.Create((float)(f.Nx - 1)); _hy = Vector256.Create((float)(f.Ny - 1)); _hz = Vector256.Create((float)(f.Nz - 1));
+            _band = Vector256.Create(f.Band);
+            _margin = Vector256.Create(mc.Margin);
+            float threshold = MeshCollideSystem.MidpointThreshold(mc);
+            _threshold = Vector256.Create(threshold);
+            // A distance at or above this can neither be pushed (it is above the margin) nor start a midpoint test
+            // (less half the longest segment it is still above the threshold), so its exact value is not needed.
+            _far = Vector256.Create(threshold + 0.5f * maxRest + 1e-3f * f.CellSize);
+            _slide = Vector256.Create(slide);
+            _tx = Vector256.Create(pose.T.X); _ty = Vector256.Create(pose.T.Y); _tz = Vector256.Create(pose.T.Z);
+            ref readonly var l = ref pose.ToLocal;
+            _l00 = Vector256.Create(l.S00); _l01 = Vector256.Create(l.S01); _l02 = Vector256.Create(l.S02);
+            _l10 = Vector256.Create(l.S10); _l11 = Vector256.Create(l.S11); _l12 = Vector256.Create(l.S12);
+            _l20 = Vector256.Create(l.S20); _l21 = Vector256.Create(l.S21); _l22 = Vector256.Create(l.S22);
+            ref readonly var w = ref pose.ToWorld;
+            _w00 = Vector256.Create(w.S00); _w01 = Vector256.Create(w.S01); _w02 = Vector256.Create(w.S02);
+            _w10 = Vector256.Create(w.S10); _w11 = Vector256.Create(w.S11); _w12 = Vector256.Create(w.S12);
+            _w20 = Vector256.Create(w.S20); _w21 = Vector256.Create(w.S21); _w22 = Vector256.Create(w.S22);
+            _nx = Vector256.Create(f.Nx); _nxy = Vector256.Create(f.Nx * f.Ny);
+            _bx = Vector256.Create(f.BricksX); _bxy = Vector256.Create(f.BricksX * f.BricksY);
+        }
+
+        /// <summary>Lanes g … g + 7 of the chunk, root to tip, as <see cref="MeshCollideSystem.Collide"/> walks each strand.</summary>
+        public void Column(in Rows r, int g, int height, Vector256<int> live)
+        {
+            var previous = Vector256<float>.Zero;
+            var all = Vector256<float>.AllBitsSet;
+            for (int k = 0; k < height; k++)
+            {
+                nuint o = (nuint)(k * StrandChunk.Lanes + g);
+                var d = PushOut(all, r, o);
+                if (k > 0)
+                {
+                    var alive = Vector256.GreaterThan(live, Vector256.Create(k)).AsSingle();
+                    var rest = Vector256.LoadUnsafe(ref r.Rest, o);
+                    var test = alive & Vector256.LessThan(Avx.Max(previous, d) - Vector256.Create(0.5f) * rest, _threshold);
+                    if (test != Vector256<float>.Zero) d = Midpoint(test, r, o - StrandChunk.Lanes, o, d);
+                }
+                previous = d;
+            }
+        }
+
+        /// <summary>Head space: Rᵀ(p − t).</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private void ToLocal(Vector256<float> x, Vector256<float> y, Vector256<float> z, out Vector256<float> lx, out Vector256<float> ly, out Vector256<float> lz)
+        {
+            lx = _l00 * x + _l01 * y + _l02 * z;
+            ly = _l10 * x + _l11 * y + _l12 * z;
+            lz = _l20 * x + _l21 * y + _l22 * z;
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private void ToWorld(Vector256<float> x, Vector256<float> y, Vector256<float> z, out Vector256<float> wx, out Vector256<float> wy, out Vector256<float> wz)
+        {
+            wx = _w00 * x + _w01 * y + _w02 * z;
+            wy = _w10 * x + _w11 * y + _w12 * z;
+            wz = _w20 * x + _w21 * y + _w22 * z;
+        }
+
+        /// <summary>
+        /// The particles of row o in <paramref name="mask"/> pushed out to the margin (MeshCollideSystem.PushOut);
+        /// returns each lane's distance, exact wherever it could change a decision (see the class summary).
+        /// </summary>
+        private Vector256<float> PushOut(Vector256<float> mask, in Rows r, nuint o)
+        {
+            var x = Vector256.LoadUnsafe(ref r.X, o); var y = Vector256.LoadUnsafe(ref r.Y, o); var z = Vector256.LoadUnsafe(ref r.Z, o);
+            ToLocal(x - _tx, y - _ty, z - _tz, out var lx, out var ly, out var lz);
+            var d = Distance(lx, ly, lz);
+            var push = mask & Vector256.LessThan(d, _margin) & ~Vector256.Equals(Vector256.LoadUnsafe(ref r.M, o), Vector256<float>.Zero);
+            if (push == Vector256<float>.Zero) return d;
+            var running = push;
+            for (int it = 0; it < 3; it++)
+            {
+                Gradient(lx, ly, lz, out var gx, out var gy, out var gz);
+                var g2 = gx * gx + gy * gy + gz * gz;
+                running &= Vector256.GreaterThan(g2, Vector256.Create(1e-12f));
+                if (running == Vector256<float>.Zero) break;
+                var len = Vector256.Sqrt(g2);
+                var amount = _margin - d;
+                var nx = gx / len; var ny = gy / len; var nz = gz / len;
+                lx = Vector256.ConditionalSelect(running, lx + nx * amount, lx);
+                ly = Vector256.ConditionalSelect(running, ly + ny * amount, ly);
+                lz = Vector256.ConditionalSelect(running, lz + nz * amount, lz);
+                ToWorld(nx, ny, nz, out var wnx, out var wny, out var wnz);
+                RemoveInward(running, wnx, wny, wnz, r, o);
+                d = Vector256.ConditionalSelect(running, Distance(lx, ly, lz), d);
+                running &= Vector256.LessThan(d, _margin);
+                if (running == Vector256<float>.Zero) break;
+            }
+            ToWorld(lx, ly, lz, out var px, out var py, out var pz);
+            Vector256.ConditionalSelect(push, px + _tx, x).StoreUnsafe(ref r.X, o);
+            Vector256.ConditionalSelect(push, py + _ty, y).StoreUnsafe(ref r.Y, o);
+            Vector256.ConditionalSelect(push, pz + _tz, z).StoreUnsafe(ref r.Z, o);
+            return d;
+        }
+
+        /// <summary>The midpoint test of the segments ending at row o1 (lanes in <paramref name="test"/>); returns the distances of row o1.</summary>
+        private Vector256<float> Midpoint(Vector256<float> test, in Rows r, nuint o0, nuint o1, Vector256<float> d)
+        {
+            var half = Vector256.Create(0.5f);
+            var x0 = Vector256.LoadUnsafe(ref r.X, o0); var y0 = Vector256.LoadUnsafe(ref r.Y, o0); var z0 = Vector256.LoadUnsafe(ref r.Z, o0);
+            var x1 = Vector256.LoadUnsafe(ref r.X, o1); var y1 = Vector256.LoadUnsafe(ref r.Y, o1); var z1 = Vector256.LoadUnsafe(ref r.Z, o1);
+            ToLocal(half * (x0 + x1) - _tx, half * (y0 + y1) - _ty, half * (z0 + z1) - _tz, out var lx, out var ly, out var lz);
+            // Only midpoints whose brick reaches below the margin can be pushed.
+            var near = test & Grid(lx, ly, lz, out var ix, out var iy, out var iz, out var fx, out var fy, out var fz);
+            if (near == Vector256<float>.Zero) return d;
+            near &= Vector256.LessThan(Brick(ix, iy, iz), _margin);
+            if (near == Vector256<float>.Zero) return d;
+            var dm = Sample(ix, iy, iz, fx, fy, fz, out var gx, out var gy, out var gz);
+            var g2 = gx * gx + gy * gy + gz * gz;
+            var hit = near & Vector256.LessThan(dm, _margin) & Vector256.GreaterThan(g2, Vector256.Create(1e-12f));
+            if (hit == Vector256<float>.Zero) return d;
+            var len = Vector256.Sqrt(g2);
+            ToWorld(gx / len, gy / len, gz / len, out var nx, out var ny, out var nz);
+            var amount = _margin - dm;
+            foreach (var o in (ReadOnlySpan<nuint>)[o0, o1])
+            {
+                var move = hit & ~Vector256.Equals(Vector256.LoadUnsafe(ref r.M, o), Vector256<float>.Zero);
+                if (move == Vector256<float>.Zero) continue;
+                var x = Vector256.LoadUnsafe(ref r.X, o); var y = Vector256.LoadUnsafe(ref r.Y, o); var z = Vector256.LoadUnsafe(ref r.Z, o);
+                Vector256.ConditionalSelect(move, x + nx * amount, x).StoreUnsafe(ref r.X, o);
+                Vector256.ConditionalSelect(move, y + ny * amount, y).StoreUnsafe(ref r.Y, o);
+                Vector256.ConditionalSelect(move, z + nz * amount, z).StoreUnsafe(ref r.Z, o);
+                RemoveInward(move, nx, ny, nz, r, o);
+            }
+            // Lifting a segment over a thin part (an ear) can push an end into it from the other side.
+            PushOut(hit, r, o0);
+            return Vector256.ConditionalSelect(hit, PushOut(hit, r, o1), d);
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private void RemoveInward(Vector256<float> mask, Vector256<float> nx, Vector256<float> ny, Vector256<float> nz, in Rows r, nuint o)
+        {
+            var vx = Vector256.LoadUnsafe(ref r.Vx, o); var vy = Vector256.LoadUnsafe(ref r.Vy, o); var vz = Vector256.LoadUnsafe(ref r.Vz, o);
+            var vn = vx * nx + vy * ny + vz * nz;
+            var m = mask & Vector256.LessThan(vn, Vector256<float>.Zero);
+            if (m == Vector256<float>.Zero) return;
+            Vector256.ConditionalSelect(m, (vx - vn * nx) * _slide, vx).StoreUnsafe(ref r.Vx, o);
+            Vector256.ConditionalSelect(m, (vy - vn * ny) * _slide, vy).StoreUnsafe(ref r.Vy, o);
+            Vector256.ConditionalSelect(m, (vz - vn * nz) * _slide, vz).StoreUnsafe(ref r.Vz, o);
+        }
+
+        /// <summary>Grid coordinates of head-space points: the lanes inside the grid (the others get cell 0).</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> Grid(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, out Vector256<int> ix, out Vector256<int> iy, out Vector256<int> iz,
+            out Vector256<float> fx, out Vector256<float> fy, out Vector256<float> fz)
+        {
+            var gx = (lx - _ox) * _inv; var gy = (ly - _oy) * _inv; var gz = (lz - _oz) * _inv;
+            return Cells(ref gx, ref gy, ref gz, out ix, out iy, out iz, out fx, out fy, out fz);
+        }
+
+        /// <summary>Cells and fractions of grid coordinates (g is left masked to the grid: 0 outside).</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> Cells(ref Vector256<float> gx, ref Vector256<float> gy, ref Vector256<float> gz, out Vector256<int> ix, out Vector256<int> iy, out Vector256<int> iz,
+            out Vector256<float> fx, out Vector256<float> fy, out Vector256<float> fz)
+        {
+            var inside = Vector256.GreaterThanOrEqual(gx, Vector256<float>.Zero) & Vector256.GreaterThanOrEqual(gy, Vector256<float>.Zero)
+                & Vector256.GreaterThanOrEqual(gz, Vector256<float>.Zero) & Vector256.LessThan(gx, _hx) & Vector256.LessThan(gy, _hy) & Vector256.LessThan(gz, _hz);
+            gx &= inside; gy &= inside; gz &= inside;
+            ix = Avx.ConvertToVector256Int32WithTruncation(gx); iy = Avx.ConvertToVector256Int32WithTruncation(gy); iz = Avx.ConvertToVector256Int32WithTruncation(gz);
+            fx = gx - Avx.ConvertToVector256Single(ix); fy = gy - Avx.ConvertToVector256Single(iy); fz = gz - Avx.ConvertToVector256Single(iz);
+            return inside;
+        }
+
+        /// <summary>The field's value outside the grid (SignedDistanceField.Outside): the distance to the grid, at least the band.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> Outside(Vector256<float> gx, Vector256<float> gy, Vector256<float> gz)
+        {
+            var zero = Vector256<float>.Zero;
+            // maxps, not Vector256.Max (IEEE −0/NaN handling costs five instructions): they differ only on NaN and on
+            // ±0, which squares to the same value.
+            var dx = Avx.Max(Avx.Max(-gx, gx - _hx), zero);
+            var dy = Avx.Max(Avx.Max(-gy, gy - _hy), zero);
+            var dz = Avx.Max(Avx.Max(-gz, gz - _hz), zero);
+            return Avx.Max(_band, Vector256.Sqrt(dx * dx + dy * dy + dz * dz) * _cell);
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> Brick(Vector256<int> ix, Vector256<int> iy, Vector256<int> iz)
+        {
+            const byte S = SignedDistanceField.BrickShift;
+            var b = Vector256.ShiftRightLogical(ix, S) + _bx * Vector256.ShiftRightLogical(iy, S) + _bxy * Vector256.ShiftRightLogical(iz, S);
+            return Avx2.GatherVector256(_bricks, b, 4);
+        }
+
+        /// <summary>The field at head-space points (the band outside the grid), exact where a decision could depend on it, else a lower bound at or above the far threshold.</summary>
+        private Vector256<float> Distance(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz)
+        {
+            var gx = (lx - _ox) * _inv; var gy = (ly - _oy) * _inv; var gz = (lz - _oz) * _inv;
+            var rawX = gx; var rawY = gy; var rawZ = gz;
+            var inside = Cells(ref gx, ref gy, ref gz, out var ix, out var iy, out var iz, out var fx, out var fy, out var fz);
+            if (inside == Vector256<float>.Zero) return Outside(rawX, rawY, rawZ);
+            var bound = Brick(ix, iy, iz);
+            if (inside != Vector256<float>.AllBitsSet) bound = Vector256.ConditionalSelect(inside, bound, Outside(rawX, rawY, rawZ));
+            var exact = inside & Vector256.LessThan(bound, _far);
+            if (exact == Vector256<float>.Zero) return bound;
+            var i = ix + _nx * iy + _nxy * iz;
+            float* d = _d;
+            int sy = _sy, sz = _sz;
+            Pair(d, i, out var d000, out var d100); Pair(d + sy, i, out var d010, out var d110);
+            Pair(d + sz, i, out var d001, out var d101); Pair(d + sz + sy, i, out var d011, out var d111);
+            var x00 = d000 + fx * (d100 - d000); var x10 = d010 + fx * (d110 - d010);
+            var x01 = d001 + fx * (d101 - d001); var x11 = d011 + fx * (d111 - d011);
+            var y0 = x00 + fy * (x10 - x00); var y1 = x01 + fy * (x11 - x01);
+            return Vector256.ConditionalSelect(exact, y0 + fz * (y1 - y0), bound);
+        }
+
+        /// <summary>
+        /// Each lane's two neighbours along x, d[i] and d[i + 1], gathered as one 8-byte element (half the gathered
+        /// elements of two float gathers), then split into the two values in lane order.
+        /// </summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private static void Pair(float* d, Vector256<int> i, out Vector256<float> lo, out Vector256<float> hi)
+        {
+            var a = Avx2.GatherVector256((long*)d, i.GetLower(), 4).AsSingle();   // lanes 0 … 3: (lo, hi) pairs
+            var b = Avx2.GatherVector256((long*)d, i.GetUpper(), 4).AsSingle();   // lanes 4 … 7
+            // Even floats are the lo values, odd the hi, in lane order 0 1 4 5 2 3 6 7: swap the middle 8-byte blocks.
+            lo = Avx2.Permute4x64(Avx.Shuffle(a, b, 0b10_00_10_00).AsDouble(), 0b11_01_10_00).AsSingle();
+            hi = Avx2.Permute4x64(Avx.Shuffle(a, b, 0b11_01_11_01).AsDouble(), 0b11_01_10_00).AsSingle();
+        }
+
+        /// <summary>The field's gradient at head-space points (zero outside the grid), as SignedDistanceField.SampleAt.</summary>
+        private void Gradient(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, out Vector256<float> gx, out Vector256<float> gy, out Vector256<float> gz)
+        {
+            var inside = Grid(lx, ly, lz, out var ix, out var iy, out var iz, out var fx, out var fy, out var fz);
+            Sample(ix, iy, iz, fx, fy, fz, out gx, out gy, out gz);
+            gx &= inside; gy &= inside; gz &= inside;
+        }
+
+        /// <summary>Value and gradient in the cells (ix, iy, iz) at fractions (fx, fy, fz): SignedDistanceField.SampleAt's arithmetic.</summary>
+        private Vector256<float> Sample(Vector256<int> ix, Vector256<int> iy, Vector256<int> iz, Vector256<float> fx, Vector256<float> fy, Vector256<float> fz,
+            out Vector256<float> gx, out Vector256<float> gy, out Vector256<float> gz)
+        {
+            var i = ix + _nx * iy + _nxy * iz;
+            float* d = _d;
+            int sy = _sy, sz = _sz;
+            Pair(d, i, out var d000, out var d100); Pair(d + sy, i, out var d010, out var d110);
+            Pair(d + sz, i, out var d001, out var d101); Pair(d + sz + sy, i, out var d011, out var d111);
+            var x00 = d000 + fx * (d100 - d000); var x10 = d010 + fx * (d110 - d010);
+            var x01 = d001 + fx * (d101 - d001); var x11 = d011 + fx * (d111 - d011);
+            var y0 = x00 + fy * (x10 - x00); var y1 = x01 + fy * (x11 - x01);
+            var one = Vector256<float>.One;
+            var ux = one - fy; var uz = one - fz;
+            gx = (uz * (ux * (d100 - d000) + fy * (d110 - d010)) + fz * (ux * (d101 - d001) + fy * (d111 - d011))) * _inv;
+            gy = (uz * (x10 - x00) + fz * (x11 - x01)) * _inv;
+            gz = (y1 - y0) * _inv;
+            return y0 + fz * (y1 - y0);
+        }
+    }
+}

@@ -1,0 +1,250 @@
+using System.Numerics;
+using HairSim.Fast;
+using HairSim.Measurement;
+using HairSim.Meshes;
+using Xunit;
+
+namespace HairSim.Tests.Meshes;
+
+/// <summary>
+/// Mesh collision on strand chunks (<see cref="FastMeshCollideSystem"/>): the same bits as the reference
+/// <see cref="MeshCollideSystem"/> (whole and cut strands, one and two threads), the brick bounds it skips samples
+/// with, thin parts not tunnelled, and the penetration bound on the project's head.
+/// </summary>
+public sealed class FastMeshCollideTests
+{
+    private static readonly Lazy<(TriangleMesh Mesh, SignedDistanceField Field)> Head = new(() =>
+    {
+        var mesh = ProceduralHead.Create();
+        return (mesh, SignedDistanceField.Bake(mesh, 0.0025f));
+    });
+
+    private static bool ChunksExpected => FastPathInfo.Avx512 && System.Runtime.Intrinsics.X86.Avx2.IsSupported;
+
+    /// <summary>Hair grown on the project's head: 48 sheets × 16 strands (24 chunks), colliding with the mesh only.</summary>
+    private static HairScene MeshScene(int sheets = 48)
+    {
+        var (mesh, field) = Head.Value;
+        return MeshScalp.BuildScene(mesh, field, new MeshGroomSettings { SheetCount = sheets, StrandsPerSheet = 16, ScalpMaskThreshold = 0.5f },
+            new SimulationSettings { Path = SolverPath.Fast });
+    }
+
+    [Theory]
+    [InlineData(false, 1)]
+    [InlineData(false, 2)]
+    [InlineData(true, 1)]
+    [InlineData(true, 2)]
+    public void ChunksGiveTheBitsOfTheReferenceMeshPass(bool cut, int threads)
+    {
+        var chunked = MeshScene();
+        var plain = MeshScene();
+        if (cut)
+            foreach (var w in new[] { chunked.World, plain.World })
+            {
+                // Cuts leave 2 … 16 live particles (a deterministic spread; whole strands in between).
+                for (int s = 0; s < w.StrandCount; s++) if (s % 3 != 0) w.StrandParticleCount[s] = 2 + (s * 7) % 15;
+                w.MarkEdited();
+            }
+        using var dispatcher = new ParallelDispatcher(threads);
+        var simC = new HairSimulation(chunked, dispatcher: dispatcher);
+        var simP = new HairSimulation(plain, dispatcher: dispatcher);
+        simP.Pipeline.UseStrandChunks = false;
+        Assert.Contains(MeshCollideSystem.SystemName, simC.Pipeline.SystemNames);
+        Assert.Equal(ChunksExpected, simC.Pipeline.UsesStrandChunks);
+        int stepped = 0;
+        for (int f = 1; f <= 40; f++)
+        {
+            simC.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+            simP.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+            stepped += simC.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(chunked.World.BitEquals(plain.World), $"cut {cut}, {threads} thread(s): the chunk and reference mesh passes differ after frame {f}");
+        }
+        Assert.Equal(0, chunked.World.CountNonFinite());
+        if (ChunksExpected) Assert.True(stepped >= 40 * 24 / (cut ? 3 : 1), $"only {stepped} chunks stepped");
+    }
+
+    [Fact]
+    public void MeshCollisionAllocatesNothingPerStep()
+    {
+        var scene = MeshScene();
+        var sim = new HairSimulation(scene);
+        for (int f = 1; f <= 40; f++) sim.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+        long before = GC.GetAllocatedBytesForCurrentThread();
+        for (int f = 41; f <= 60; f++) sim.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+        Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - before);
+    }
+
+    [Fact]
+    public void BricksBoundTheFieldFromBelowAndTheSampleIsTheReferences()
+    {
+        var field = Head.Value.Field;
+        var rng = new Random(18);
+        var lo = field.Origin - new Vector3(0.01f);
+        var size = new Vector3(field.Nx, field.Ny, field.Nz) * field.CellSize + new Vector3(0.02f);
+        int inside = 0;
+        for (int n = 0; n < 200_000; n++)
+        {
+            var p = lo + size * new Vector3(rng.NextSingle(), rng.NextSingle(), rng.NextSingle());
+            float d = field.Distance(p);
+            Assert.Equal(d, field.Sample(p, out _));
+            var g = (p - field.Origin) * field.InvCell;
+            if (!(g.X >= 0f && g.Y >= 0f && g.Z >= 0f && g.X < field.Nx - 1 && g.Y < field.Ny - 1 && g.Z < field.Nz - 1))
+            {
+                Assert.True(d >= field.Band, $"outside the grid {d} is below the band");
+                continue;
+            }
+            inside++;
+            float bound = field.BrickBound((int)g.X, (int)g.Y, (int)g.Z);
+            Assert.True(bound <= d, $"brick bound {bound} above the field {d} at {p}");
+            Assert.True(bound > d - 0.02f, $"brick bound {bound} far below the field {d} at {p}: the bricks are not the cells'");
+        }
+        Assert.True(inside > 100_000);
+    }
+
+    [Fact]
+    public void ASegmentAcrossAThinRimRidesOverItInAChunk()
+    {
+        // An ear-like slab 4 mm thick; 32 strands (one chunk) whose second segment crosses it 1 mm below its rim:
+        // neither end is inside, only the segment's middle is. Chunks must lift every one of them as the reference does.
+        var slab = TriangleMesh.Box(new Vector3(-0.002f, -0.05f, -0.05f), new Vector3(0.002f, 0f, 0.05f));
+        var sdf = SignedDistanceField.Bake(slab, 0.0005f);
+        HairScene Build()
+        {
+            var world = new HairWorld(1, 32, 16);
+            for (int s = 0; s < 32; s++)
+            {
+                float z = -0.03f + 0.002f * s;
+                var points = new Vector3[16];
+                points[0] = new Vector3(-0.008f, 0.02f, z);
+                points[1] = new Vector3(-0.008f, -0.001f, z);
+                for (int k = 2; k < 16; k++) points[k] = new Vector3(-0.008f + 0.016f * (k - 1), -0.001f - 0.0001f * s, z);
+                world.SetStrand(s, points, pinned: 1);
+            }
+            world.ResetToRest();
+            var scene = new HairScene(world, new SimulationSettings { Path = SolverPath.Fast });
+            scene.SetComponent(new MeshCollider(sdf));
+            return scene;
+        }
+        var only = new PipelineBuilder();
+        foreach (var f in PipelineBuilder.CreateDefault().Factories) if (f.Name == MeshCollideSystem.SystemName) only.Add(f);
+        var chunked = Build();
+        var plain = Build();
+        var pc = only.Build(chunked);
+        var pp = only.Build(plain);
+        pp.UseStrandChunks = false;
+        Assert.Equal(ChunksExpected, pc.UsesStrandChunks);
+        var w = chunked.World;
+        for (int s = 0; s < 32; s++)
+            Assert.True(sdf.Distance(0.5f * (w.GetPosition(w.StrandFirst[s] + 1) + w.GetPosition(w.StrandFirst[s] + 2))) < -1e-4f);
+        pc.Step(1f / 60f, RigidTransform.Identity);
+        pp.Step(1f / 60f, RigidTransform.Identity);
+        if (ChunksExpected) Assert.Equal(1, pc.LastFrameChunks.Stepped);
+        Assert.True(w.BitEquals(plain.World), "chunk and reference differ");
+        for (int s = 0; s < 32; s++)
+        {
+            int f = w.StrandFirst[s];
+            for (int k = 1; k < 16; k++)
+                Assert.True(sdf.Distance(0.5f * (w.GetPosition(f + k - 1) + w.GetPosition(f + k))) > -1e-4f, $"strand {s}: segment {k}'s middle is in the rim");
+        }
+    }
+
+    [Theory]
+    [InlineData(true)]
+    [InlineData(false)]
+    public void HairFallingOnAThinRimDrapesOverItInsteadOfThroughIt(bool chunks)
+    {
+        // An ear seen edge-on: a slab 4 mm thick, far thinner than the 16.7 mm segments. 32 limp strands (one chunk) lie
+        // 3 mm above its rim, each pinned at its root on one side with its first free particle on the other, so as the
+        // strand falls its first segment swings down across the rim; only that segment's midpoint sees the slab. The
+        // strands must drape over the rim, not pass through it.
+        var slab = TriangleMesh.Box(new Vector3(-0.002f, -0.1f, -0.05f), new Vector3(0.002f, 0f, 0.05f));
+        var sdf = SignedDistanceField.Bake(slab, 0.0005f);
+        const float L = 0.0167f;
+        var world = new HairWorld(1, 32, 16);
+        for (int s = 0; s < 32; s++)
+        {
+            var points = new Vector3[16];
+            for (int k = 0; k < 16; k++) points[k] = new Vector3(-0.0083f + k * L, 0.003f, -0.03f + 0.002f * s);
+            world.SetStrand(s, points, pinned: 1);
+        }
+        world.ResetToRest();
+        var scene = new HairScene(world, new SimulationSettings { Path = SolverPath.Fast, Bend = BendModel.Limp });
+        scene.SetComponent(new MeshCollider(sdf));
+        var sim = new HairSimulation(scene);
+        sim.Pipeline.UseStrandChunks = chunks;
+        Assert.Equal(chunks && ChunksExpected, sim.Pipeline.UsesStrandChunks);
+        // How deep the strands' segments reach into the slab: through it is 2 mm (its middle plane) or more.
+        float Deepest()
+        {
+            float deepest = 0f;
+            for (int s = 0; s < 32; s++)
+            {
+                int first = world.StrandFirst[s];
+                for (int i = first + 1; i < first + 16; i++)
+                    for (int t = 0; t <= 16; t++)
+                        deepest = MathF.Max(deepest, -sdf.Distance(Vector3.Lerp(world.GetPosition(i - 1), world.GetPosition(i), t / 16f)));
+            }
+            return deepest;
+        }
+        float falling = 0f;
+        for (int f = 1; f <= 90; f++)
+        {
+            sim.Step(1f / 60f, RigidTransform.Identity);
+            falling = MathF.Max(falling, Deepest());
+        }
+        Assert.Equal(0, world.CountNonFinite());
+        for (int s = 0; s < 32; s++)
+        {
+            int first = world.StrandFirst[s];
+            Assert.True(world.GetPosition(first + 15).Y < -0.05f, $"strand {s} did not fall: the test sees nothing");
+            Assert.True(world.GetPosition(first + 15).X > 0.002f, $"strand {s}'s tip is on the root's side of the rim: it went through");
+        }
+        // Without the midpoint tests the first segment cuts through the slab (2.00 mm); with them it rides on the rim.
+        Assert.True(falling < 1.9f * 0.001f, $"a segment went {falling * 1000:F2} mm into the 4 mm rim while falling");
+        float resting = Deepest();
+        Assert.True(resting < 0.001f, $"a segment rests {resting * 1000:F2} mm inside the rim (target: below 1 mm)");
+    }
+
+    [Fact]
+    public void NoSegmentPassesThroughAnEarAndPenetrationStaysBelowAMillimetreOnChunks()
+    {
+        // The project's head: hair hangs beside the 8 mm ears while the head shakes for 3 s on the chunk path. Every
+        // segment near an ear is checked at 7 inner points against the field: a segment across an ear would have its
+        // middle points deep inside it while both its ends are out.
+        var scene = MeshScene(120);
+        var field = Head.Value.Field;
+        using var dispatcher = new ParallelDispatcher(2);
+        var sim = new HairSimulation(scene, dispatcher: dispatcher);
+        Assert.Equal(ChunksExpected, sim.Pipeline.UsesStrandChunks);
+        var w = scene.World;
+        var ears = new[] { new Vector3(-0.079f, -0.008f, -0.006f), new Vector3(0.079f, -0.008f, -0.006f) };
+        int nearEars = 0;
+        float deepest = 0f, worstSegment = float.MaxValue;
+        for (int f = 1; f <= 180; f++)
+        {
+            var head = HeadMotion.Shake(f / 60f);
+            sim.Step(1f / 60f, head);
+            if (f % 10 != 0) continue;
+            var toLocal = Quaternion.Conjugate(head.Rotation);
+            deepest = MathF.Max(deepest, (float)WorldMetrics.Measure(scene).MaxPenetration);
+            for (int s = 0; s < w.StrandCount; s++)
+            {
+                int first = w.StrandFirst[s];
+                for (int i = first + 1; i < first + w.StrandParticleCount[s]; i++)
+                {
+                    var a = Vector3.Transform(w.GetPosition(i - 1) - head.Position, toLocal);
+                    var b = Vector3.Transform(w.GetPosition(i) - head.Position, toLocal);
+                    var m = 0.5f * (a + b);
+                    if (MathF.Min((m - ears[0]).Length(), (m - ears[1]).Length()) > 0.03f) continue;
+                    nearEars++;
+                    for (int t = 1; t < 8; t++) worstSegment = MathF.Min(worstSegment, field.Distance(Vector3.Lerp(a, b, t / 8f)));
+                }
+            }
+        }
+        Assert.Equal(0, w.CountNonFinite());
+        Assert.True(nearEars > 1000, $"only {nearEars} segments came within 3 cm of an ear: the test sees nothing");
+        // Through the 8 mm ear would be 4 mm; a segment's chord over the rounded rim clips it by up to about 1.5 mm.
+        Assert.True(worstSegment > -0.002f, $"a segment passes through an ear: a point along it is {-worstSegment * 1000:F2} mm inside");
+        Assert.True(deepest < 0.001f, $"deepest particle {deepest * 1000:F3} mm inside the mesh");
+    }
+}
