@@ -36,7 +36,7 @@ public static class BenchCommand
 
     private static readonly CultureInfo Inv = CultureInfo.InvariantCulture;
 
-    private sealed record Row(string Scene, string Part, string Path, int Threads, int Strands, int Particles, int Frames,
+    internal sealed record Row(string Scene, string Part, string Path, int Threads, int Strands, int Particles, int Frames,
         double MedianMs, double MinMs, double BytesPerStep, int Substeps)
     {
         /// <summary>Median of each round, when the row was timed in several rounds.</summary>
@@ -107,6 +107,10 @@ public static class BenchCommand
             }
         }
 
+        // Mesh head against the ellipsoid head, interleaved (docs/meshes.md).
+        var meshPairs = MeshHeadBench.Pairs(threads > 1 ? parallel : null, threads, warmup, frames);
+        foreach (var (m, e) in meshPairs) { rows.Add(m); rows.Add(e); }
+
         // Particles per strand: the reference scene's strand count at other strand lengths, on every core, so the cost
         // per particle-step of each length can be set against the best one (the fast path should not be tuned to one length).
         foreach (int n in lengths)
@@ -135,7 +139,8 @@ public static class BenchCommand
         Console.WriteLine();
         Console.WriteLine(table);
         Console.WriteLine($"bench took {total.Elapsed.TotalSeconds:F0} s");
-        if (outPath != null) WriteDoc(outPath, table, command, rows, chunkPairs, threads, frames, warmup, rounds);
+        foreach (var line in MeshHeadBench.Lines(meshPairs)) Console.WriteLine(line);
+        if (outPath != null) WriteDoc(outPath, table, command, rows, chunkPairs, threads, frames, warmup, rounds, meshPairs);
         return 0;
     }
 
@@ -277,7 +282,7 @@ public static class BenchCommand
         return row;
     }
 
-    private static Row Summarise(string name, string part, SolverPath path, int threads, HairScene scene, double[] times, long bytes, int frames, int? passesPerFrame = null)
+    internal static Row Summarise(string name, string part, SolverPath path, int threads, HairScene scene, double[] times, long bytes, int frames, int? passesPerFrame = null)
     {
         var sorted = (double[])times.Clone();
         Array.Sort(sorted);
@@ -303,7 +308,8 @@ public static class BenchCommand
         return sb.ToString();
     }
 
-    private static void WriteDoc(string path, string table, string command, List<Row> rows, List<(Row On, Row Off)> chunkPairs, int threads, int frames, int warmup, int rounds)
+    private static void WriteDoc(string path, string table, string command, List<Row> rows, List<(Row On, Row Off)> chunkPairs, int threads, int frames, int warmup, int rounds,
+        List<(Row Mesh, Row Ellipsoid)> meshPairs)
     {
         var sb = new StringBuilder();
         sb.AppendLine("# Performance");
@@ -368,6 +374,7 @@ public static class BenchCommand
         }
         foreach (var (on, off) in chunkPairs)
             sb.AppendLine(string.Create(Inv, $"Strand chunks vs the same fast path system by system, {off.Scene}, {off.Threads} thread{(off.Threads == 1 ? "" : "s")}, interleaved in one simulation (blocks of 10 frames, {off.Frames} each): {off.MedianMs:F2} → {on.MedianMs:F2} ms/frame (**{off.MedianMs / on.MedianMs:F2}×**)."));
+        foreach (var line in MeshHeadBench.Lines(meshPairs)) sb.AppendLine(line);
         sb.AppendLine("<!-- BENCH:END -->");
         string generated = sb.ToString();
 

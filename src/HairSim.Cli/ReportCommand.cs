@@ -118,6 +118,7 @@ public static class ReportCommand
         Table(md, rows, all, def, front);
         HeldShapeSweeps(md, quick);
         VolumeSection(md);
+        MeshHeadReport.Append(md, quick);
         StabilityCommand.WriteFile(output, md.ToString());
     }
 
