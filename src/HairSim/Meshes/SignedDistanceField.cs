@@ -88,7 +88,8 @@ public sealed class SignedDistanceField
     public int Nx { get; }
     public int Ny { get; }
     public int Nz { get; }
-    public TimeSpan BakeTime { get; }
+    /// <summary>How long <see cref="Bake"/> took, the bricks of lower bounds included (zero for a stored field).</summary>
+    public TimeSpan BakeTime { get; private set; }
     public float Band => BandCells * CellSize;
     public long CellCount => (long)Nx * Ny * Nz;
 
@@ -118,7 +119,9 @@ public sealed class SignedDistanceField
             if (d == null) d = f;
             else for (int i = 0; i < d.Length; i++) d[i] = MathF.Min(d[i], f[i]);
         }
-        return new SignedDistanceField(origin, cellSize, Nx, Ny, Nz, d!, clock.Elapsed);
+        var field = new SignedDistanceField(origin, cellSize, Nx, Ny, Nz, d!, TimeSpan.Zero);
+        field.BakeTime = clock.Elapsed;
+        return field;
     }
 
     private static float[] BakePart(TriangleMesh mesh, int[] weld, Vector3 origin, float cellSize, int Nx, int Ny, int Nz)
