@@ -233,29 +233,34 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
 
     private void GradientJob(int job)
     {
-        var (begin, end) = NodeRange(job);
         var g = _grid;
         int nx = g.Nx, ny = g.Ny, nz = g.Nz, sy = nx, sz = nx * ny;
+        int zBegin = (int)((long)nz * job / _nodeJobs), zEnd = (int)((long)nz * (job + 1) / _nodeJobs);
         var p = _p;
-        float push = _push, maxPush = _maxPush, friction = _friction;
-        for (int k = begin; k < end; k++)
-        {
-            int z = k / sz, r = k - z * sz, y = r / sy, x = r - y * sy;
-            float px1 = x + 1 < nx ? p[k + 1] : 0f, px0 = x > 0 ? p[k - 1] : 0f;
-            float py1 = y + 1 < ny ? p[k + sy] : 0f, py0 = y > 0 ? p[k - sy] : 0f;
-            float pz1 = z + 1 < nz ? p[k + sz] : 0f, pz0 = z > 0 ? p[k - sz] : 0f;
-            float dx = -push * 0.5f * (px1 - px0), dy = -push * 0.5f * (py1 - py0), dz = -push * 0.5f * (pz1 - pz0);
-            float d2 = dx * dx + dy * dy + dz * dz;
-            if (d2 > maxPush * maxPush) { float c = maxPush / MathF.Sqrt(d2); dx *= c; dy *= c; dz *= c; }
-            var sum = _sum[k]; // (ρ, mx, my, mz)
-            float rho = sum.GetElement(0);
-            if (rho > VolumeSystem.MinDensity)
+        float half = -0.5f * _push, maxPush = _maxPush, friction = _friction;
+        // Row by row (no divisions to find a node's x, y, z).
+        for (int z = zBegin; z < zEnd; z++)
+            for (int y = 0; y < ny; y++)
             {
-                float pull = friction / rho;
-                _change[k] = Vector128.Create(dx + pull * sum.GetElement(1), dy + pull * sum.GetElement(2), dz + pull * sum.GetElement(3), friction);
+                int row = z * sz + y * sy;
+                for (int x = 0, k = row; x < nx; x++, k++)
+                {
+                    float px1 = x + 1 < nx ? p[k + 1] : 0f, px0 = x > 0 ? p[k - 1] : 0f;
+                    float py1 = y + 1 < ny ? p[k + sy] : 0f, py0 = y > 0 ? p[k - sy] : 0f;
+                    float pz1 = z + 1 < nz ? p[k + sz] : 0f, pz0 = z > 0 ? p[k - sz] : 0f;
+                    float dx = half * (px1 - px0), dy = half * (py1 - py0), dz = half * (pz1 - pz0);
+                    float d2 = dx * dx + dy * dy + dz * dz;
+                    if (d2 > maxPush * maxPush) { float c = maxPush / MathF.Sqrt(d2); dx *= c; dy *= c; dz *= c; }
+                    var sum = _sum[k]; // (ρ, mx, my, mz)
+                    float rho = sum.GetElement(0);
+                    if (rho > VolumeSystem.MinDensity)
+                    {
+                        float pull = friction / rho;
+                        _change[k] = Vector128.Create(dx + pull * sum.GetElement(1), dy + pull * sum.GetElement(2), dz + pull * sum.GetElement(3), friction);
+                    }
+                    else _change[k] = Vector128.Create(dx, dy, dz, 0f);
+                }
             }
-            else _change[k] = Vector128.Create(dx, dy, dz, 0f);
-        }
     }
 
     private void GatherJob(int job)
