@@ -66,7 +66,7 @@ internal static class MeshHeadReport
                 for (int t = 1; t < 8; t++)
                 {
                     var p = Vector3.Lerp(a, b, t / 8f);
-                    if (mc != null) deepest = Math.Max(deepest, -mc.Field.Distance(w.Head.InverseTransformPoint(p)));
+                    if (mc != null) deepest = Math.Max(deepest, -mc.Field.Distance(mc.PoseFor(w.Head).InverseTransformPoint(p)));
                     foreach (var c in colliders) deepest = Math.Max(deepest, c.Penetration(p));
                 }
             }

@@ -17,6 +17,7 @@ public readonly record struct WorldMetrics(
         var colliders = new Collider[scene.Colliders.Count];
         for (int c = 0; c < colliders.Length; c++) colliders[c] = scene.Colliders[c].ToWorld(w.Head);
         var mesh = scene.GetComponent<Meshes.MeshCollider>();
+        var meshPose = mesh?.PoseFor(w.Head) ?? w.Head;
         double length = 0, rest = 0, maxStretch = 0, maxPen = 0;
         int inside = 0;
         for (int s = 0; s < w.StrandCount; s++)
@@ -36,7 +37,7 @@ public readonly record struct WorldMetrics(
                 if (w.InvMass[i] == 0f) continue;
                 if (mesh != null)
                 {
-                    float dm = -mesh.Field.Distance(w.Head.InverseTransformPoint(p));
+                    float dm = -mesh.Field.Distance(meshPose.InverseTransformPoint(p));
                     if (dm > 1e-6f + 5e-7f * p.Length()) { inside++; maxPen = Math.Max(maxPen, dm); }
                 }
                 foreach (var c in colliders)

@@ -153,7 +153,7 @@ public static class HairEditor
     /// 2 mm), so hair lying on the surface is not hidden by the surface under it.
     /// </summary>
     private static bool MeshHides(Meshes.MeshCollider mesh, in RigidTransform head, Vector3 origin, Vector3 dir, float tp) =>
-        ColliderRay.Intersect(mesh, head, origin, dir, tp - MathF.Max(0.002f, 2f * mesh.Field.CellSize), out _);
+        ColliderRay.Intersect(mesh, mesh.PoseFor(head), origin, dir, tp - MathF.Max(0.002f, 2f * mesh.Field.CellSize), out _);
 
     private static bool Hidden(StrokeCamera cam, Collider[] colliders, Vector3 p, Vector2 screen)
     {

@@ -40,15 +40,18 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {
         if (_poses.Length < ctx.Substeps) _poses = new MeshCollideSystem.Pose[ctx.Substeps];
-        for (int s = 0; s < ctx.Substeps; s++) _poses[s] = new MeshCollideSystem.Pose(ctx.HeadAt(s));
         _collider = _scene?.GetComponent<MeshCollider>();
+        for (int s = 0; s < ctx.Substeps; s++) _poses[s] = new MeshCollideSystem.Pose(_collider?.PoseFor(ctx.HeadAt(s)) ?? ctx.HeadAt(s));
         return true;
     }
 
     unsafe bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
-        var mc = ReferenceEquals(scene, _scene) ? _collider : scene.GetComponent<MeshCollider>();
+        bool mine = ReferenceEquals(scene, _scene);
+        var mc = mine ? _collider : scene.GetComponent<MeshCollider>();
         if (mc == null) return true;
+        // Another scene's collider (a pipeline stepping a scene it was not built for): its pose for this substep.
+        var pose = mine ? _poses[substep] : new MeshCollideSystem.Pose(mc.PoseFor(ctx.HeadAt(substep)));
         var field = mc.Field;
         const int L = StrandChunk.Lanes;
         // The longest segment of the chunk (rows 1 … height − 1 hold the segments' rest lengths).
@@ -60,7 +63,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         ref int live = ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(scene.World.StrandParticleCount), chunk.FirstStrand);
         fixed (float* data = field.Data, bricks = field.Bricks)
         {
-            var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in _poses[substep]);
+            var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose);
             var rows = new Rows(chunk);
             for (int g = 0; g < L; g += 8)
                 k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));

@@ -2,20 +2,34 @@ using System.Numerics;
 
 namespace HairSim.Meshes;
 
+/// <summary>Where a <see cref="MeshCollider"/>'s <see cref="MeshCollider.Placement"/> is given.</summary>
+public enum ColliderSpace
+{
+    /// <summary>Relative to the head: the mesh moves with the head (a head mesh, or a part placed on it).</summary>
+    Head,
+    /// <summary>In world space: the caller moves it (a body, a shoulder on a bone, a prop), setting the placement every frame.</summary>
+    World,
+}
+
 /// <summary>
-/// A scene component: collide the hair with a mesh through its baked <see cref="SignedDistanceField"/> (head space,
-/// moving with the head like the other colliders). Add it with <c>scene.SetComponent(new MeshCollider(sdf))</c>; the
-/// pipeline then holds <see cref="MeshCollideSystem"/>, and leaves it out when no scene asks for it.
+/// A scene component: collide the hair with a mesh through its baked <see cref="SignedDistanceField"/>. Add it with
+/// <c>scene.SetComponent(new MeshCollider(sdf))</c>; the pipeline then holds <see cref="MeshCollideSystem"/>, and
+/// leaves it out when no scene asks for it. By default the field is in head space and moves with the head; a
+/// <see cref="Placement"/> puts it elsewhere on the head, or, with <see cref="ColliderSpace.World"/>, anywhere in the
+/// world (set it before each step, e.g. from a bone's global pose: it holds for all substeps of that frame).
 /// </summary>
 public sealed class MeshCollider
 {
-    public MeshCollider(SignedDistanceField field, float margin = 0f, TriangleMesh? mesh = null)
+    private RigidTransform _placement = RigidTransform.Identity;
+
+    public MeshCollider(SignedDistanceField field, float margin = 0f, TriangleMesh? mesh = null, ColliderSpace space = ColliderSpace.Head)
     {
         Mesh = mesh;
         ArgumentNullException.ThrowIfNull(field);
         if (!float.IsFinite(margin) || margin < 0f || margin >= field.Band)
             throw new ArgumentOutOfRangeException(nameof(margin), margin, $"Margin must be in [0, {field.Band}) metres (the field's band).");
-        Field = field; Margin = margin;
+        if (!Enum.IsDefined(space)) throw new ArgumentOutOfRangeException(nameof(space), space, "Unknown collider space.");
+        Field = field; Margin = margin; Space = space;
     }
 
     public SignedDistanceField Field { get; }
@@ -23,11 +37,34 @@ public sealed class MeshCollider
     public TriangleMesh? Mesh { get; }
     /// <summary>Hair keeps at least this far from the surface (metres), like the root lift of an ellipsoid groom.</summary>
     public float Margin { get; }
+    /// <summary>Whether <see cref="Placement"/> is relative to the head or in world space.</summary>
+    public ColliderSpace Space { get; }
+
+    /// <summary>
+    /// The field's pose: relative to the head (<see cref="ColliderSpace.Head"/>, identity: the field is in head space) or
+    /// in the world (<see cref="ColliderSpace.World"/>). Rigid; refused unless finite with a non-zero rotation (kept normalised).
+    /// </summary>
+    public RigidTransform Placement
+    {
+        get => _placement;
+        set
+        {
+            var p = value.Position; var q = value.Rotation;
+            if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z) || !float.IsFinite(q.X) || !float.IsFinite(q.Y)
+                || !float.IsFinite(q.Z) || !float.IsFinite(q.W) || !(q.LengthSquared() > 1e-12f))
+                throw new ArgumentException($"A placement must be finite with a non-zero rotation, got {p}, {q}.", nameof(value));
+            _placement = new RigidTransform(p, Quaternion.Normalize(q));
+        }
+    }
+
+    /// <summary>The field's world pose while the head is at <paramref name="head"/>: what the collision, the metrics and visibility tests use.</summary>
+    public RigidTransform PoseFor(in RigidTransform head) => Space == ColliderSpace.World ? _placement
+        : new RigidTransform(head.TransformPoint(_placement.Position), Quaternion.Normalize(Quaternion.Concatenate(_placement.Rotation, head.Rotation)));
 }
 
 /// <summary>
-/// Collision with a <see cref="MeshCollider"/>: a particle whose signed distance (in head space, at the substep's head
-/// pose) is below the margin goes back out along the field's gradient, its inward velocity is removed and the rest
+/// Collision with a <see cref="MeshCollider"/>: a particle whose signed distance (in the field's space, at the substep's
+/// head pose, or at its world placement) is below the margin goes back out along the field's gradient, its inward velocity is removed and the rest
 /// kept (scaled by ContactSlide), as <see cref="CollideSystem"/> does for ellipsoids. Segments are tested at their
 /// midpoints too, so a part thinner than a segment (an ear's rim) cannot slip between two particles: a midpoint
 /// inside pushes both ends out. One implementation for both paths: it touches only its own strands, so threads
@@ -43,8 +80,7 @@ public sealed class MeshCollideSystem : IHairSystem
     {
         var mc = scene.GetComponent<MeshCollider>();
         if (mc == null) return;
-        var head = ctx.HeadAt(substep);
-        Collide(scene.World, mc, new Pose(head), ctx.Settings.ContactSlide, begin, end);
+        Collide(scene.World, mc, new Pose(mc.PoseFor(ctx.HeadAt(substep))), ctx.Settings.ContactSlide, begin, end);
     }
 
     /// <summary>
