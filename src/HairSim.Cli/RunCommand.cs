@@ -57,7 +57,7 @@ public static class RunCommand
     }
 
     /// <summary>Hair grown on the file's mesh (all of it is scalp unless its vertex colours mark one in red), colliding with its distance field.</summary>
-    private static HairScene GrowOnMesh(string path, float cell, GroomSettings groom, SimulationSettings settings)
+    internal static HairScene GrowOnMesh(string path, float cell, GroomSettings groom, SimulationSettings settings)
     {
         var load = Stopwatch.StartNew();
         var mesh = path == "procedural" ? HairSim.Meshes.ProceduralHead.Create() : HairSim.Meshes.MeshFile.Load(path);

@@ -15,7 +15,7 @@ namespace HairSim.Cli;
 /// </summary>
 public static class StyleCommand
 {
-    public const string Description = "A scripted styling session on the reference scene: settle, cut at chin height (front view), fit a curl to the fringe (side view), then a head shake; writes .hairstyle, .hair, .obj, .usda and before/after SVG pictures. --bench times a full-scene cut instead.";
+    public const string Description = "A scripted styling session on the reference scene (or on a mesh head with --head): settle, cut at chin height (front view), fit a curl to the fringe (side view), then a head shake; writes .hairstyle, .hair, .obj, .usda and before/after SVG pictures. --bench times a full-scene cut instead.";
 
     public static Command Create()
     {
@@ -26,24 +26,32 @@ public static class StyleCommand
         var groom = new GroomOptions();
         var bench = CliOptions.Switch("--bench", "time a full-scene cut (median of --runs) instead of the styling session");
         var runs = CliOptions.Int("--runs", "timed cuts with --bench", 30, 1, 10_000);
-        var command = new Command("style", Description) { output, settle, after, stiffness, bench, runs };
+        var head = CliOptions.Text("--head", "style hair grown on this mesh (.glb, .gltf or .obj; its vertex colours' red marks the scalp) and colliding with it; 'procedural' is the project's own head", null, "file|procedural");
+        var cell = CliOptions.Double("--sdf-cell", "cell size of the --head mesh's distance field, metres", 0.0025, v => v > 0 && v <= 1, "more than 0 and at most 1 metre", "metres");
+        var command = new Command("style", Description) { output, settle, after, stiffness, bench, runs, head, cell };
         groom.AddTo(command);
         command.SetAction(p =>
         {
             if (p.Given(runs) && !p.GetValue(bench)) throw new UsageException("--runs applies only with --bench");
+            if (p.GetValue(head) == null && p.Given(cell)) throw new UsageException("--sdf-cell applies only with --head");
             var g = groom.Read(p);
             string outDir = p.GetValue(bench) ? p.GetValue(output)! : CliOptions.CheckOutputFolder(p.GetValue(output)!, "--out");
-            return Execute(outDir, p.GetValue(settle), p.GetValue(after), (float)p.GetValue(stiffness), g, p.GetValue(bench), p.GetValue(runs));
+            return Execute(outDir, p.GetValue(settle), p.GetValue(after), (float)p.GetValue(stiffness), g, p.GetValue(bench), p.GetValue(runs),
+                p.GetValue(head), (float)p.GetValue(cell));
         });
         return command;
     }
 
     private static readonly CultureInfo Ci = CultureInfo.InvariantCulture;
 
-    public static int Execute(string outDir, double settle, double after, float stiffness, GroomSettings groom, bool bench, int runs)
+    public static int Execute(string outDir, double settle, double after, float stiffness, GroomSettings groom, bool bench, int runs,
+        string? headMesh = null, float sdfCell = 0.0025f)
     {
         var settings = new SimulationSettings { Path = SolverPath.Fast };
-        var scene = GroomBuilder.BuildScene(groom, settings);
+        // On a mesh head the script's strokes stay where they are on the reference head (chin height, fringe): a head of
+        // the reference proportions, such as the project's procedural one, is styled the same way.
+        var scene = headMesh == null ? GroomBuilder.BuildScene(groom, settings) : RunCommand.GrowOnMesh(headMesh, sdfCell, groom, settings);
+        settings = scene.Settings;
         var w = scene.World;
         using var dispatcher = ThreadDispatchers.CreateDefault();
         var sim = new HairSimulation(scene, dispatcher: dispatcher);

@@ -16,6 +16,13 @@ public static class HairEditor
     /// <summary>A new tip closer than this (metres) to the previous particle snaps back onto it.</summary>
     public const float MinTipSegment = 1e-5f;
 
+    /// <summary>
+    /// A crossing within this share of a segment's rest length past the segment's first particle moves that particle
+    /// onto the stroke as the new tip, instead of leaving a sliver of a last segment (say 0.02 mm of a 17 mm one) that
+    /// the next collision push would stretch many times over.
+    /// </summary>
+    public const float MinTipShare = 0.1f;
+
     // ---------------- cut ----------------
 
     /// <summary>Plans a cut of every strand the stroke crosses (as seen from its camera).</summary>
@@ -99,7 +106,14 @@ public static class HairEditor
         var restA = w.GetRest(i - 1); var restB = w.GetRest(i);
         float restSeg = Vector3.Distance(restA, restB);
         var tipRest = restSeg > 0f ? restA + (restB - restA) * (len / restSeg) : restA;
-        cut = new StrandCut(s, k + 1, p, Vector3.Lerp(w.GetVelocity(i - 1), w.GetVelocity(i), u), tipRest, len);
+        var tipVelocity = Vector3.Lerp(w.GetVelocity(i - 1), w.GetVelocity(i), u);
+        if (len < MinTipShare * w.RestLength[i] && k >= 2 && w.InvMass[i - 1] != 0f)
+        {
+            // Particle k−1 becomes the tip, on the stroke: no sliver of a segment after it.
+            cut = new StrandCut(s, k, p, tipVelocity, tipRest, Vector3.Distance(w.GetPosition(i - 2), p));
+            return true;
+        }
+        cut = new StrandCut(s, k + 1, p, tipVelocity, tipRest, len);
         return true;
     }
 

@@ -75,13 +75,25 @@ public class CutTests
             Assert.True(cam.Project(w.GetPosition(tip), out var sp, out _));
             Assert.True(EditScenes.DistanceToPolyline(sp, stroke.Points) < 0.05f, $"strand {s} tip is {EditScenes.DistanceToPolyline(sp, stroke.Points)} px off the stroke");
             Assert.True(w.StrandParticleCount[s] < before.StrandParticleCount[s] || w.GetPosition(tip) != before.GetPosition(tip));
-            // Rest data in head space agrees with the world-space tip: the rest tip lies on the old rest segment.
-            var ra = before.GetRest(tip - 1); var rb = before.GetRest(tip);
+            // Rest data in head space agrees with the world-space tip: the rest tip lies on the old rest segment that
+            // was crossed. That is the tip's own old segment, or, where the crossing fell within a tenth of a segment
+            // past the tip particle (HairEditor.MinTipShare), the next one: the tip particle moved onto the stroke
+            // instead of leaving a sliver of a segment.
             var rt = w.GetRest(tip);
-            float along = Vector3.Dot(rt - ra, Vector3.Normalize(rb - ra));
-            Assert.True(Vector3.Distance(rt, ra + along * Vector3.Normalize(rb - ra)) < 1e-5f);
-            Assert.Equal(w.RestLength[tip], along, 4);
+            bool sliver = OffSegment(before.GetRest(tip - 1), before.GetRest(tip), rt) > 1e-5f;
+            var ra = before.GetRest(sliver ? tip : tip - 1); var rb = before.GetRest(sliver ? tip + 1 : tip);
+            Assert.True(OffSegment(ra, rb, rt) < 1e-5f, $"strand {s}: the rest tip is off the crossed rest segment");
+            if (sliver) Assert.True(Vector3.Distance(rt, ra) < HairEditor.MinTipShare * Vector3.Distance(ra, rb) + 1e-5f);
+            Assert.Equal(w.RestLength[tip], Vector3.Distance(before.GetRest(tip - 1), rt), 4);
         }
+    }
+
+    private static float OffSegment(Vector3 a, Vector3 b, Vector3 p)
+    {
+        var d = Vector3.Normalize(b - a);
+        float along = Vector3.Dot(p - a, d);
+        if (along < -1e-5f || along > Vector3.Distance(a, b) + 1e-5f) return float.MaxValue;
+        return Vector3.Distance(p, a + along * d);
     }
 
     [Fact]
