@@ -106,6 +106,7 @@ public sealed class CommandLineTests : IDisposable
         AssertUsageError("--hairstyle and --head cannot be combined", "run", "--hairstyle", "a.hairstyle", "--head", "procedural");
         AssertUsageError("--sheets, --strands and --particles do not apply with --hairstyle", "run", "--hairstyle", "a.hairstyle", "--sheets", "3");
         AssertUsageError("--sdf-cell applies only with --head", "run", "--sdf-cell", "0.01");
+        AssertUsageError("--sdf-cell applies only with --head", "style", "--sdf-cell", "0.01");
         AssertUsageError("--runs applies only with --bench", "style", "--runs", "3");
     }
 
