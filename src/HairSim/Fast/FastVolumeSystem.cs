@@ -70,7 +70,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         _ctx = ctx;
 
         _strides = _rest.Strides;
-        _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 4);
+        _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount);
         dispatcher.Run(_sheetJobs, _boundsJob);
         var min = _min[0]; var max = _max[0];
         for (int j = 1; j < _sheetJobs; j++) { min = Vector3.Min(min, _min[j]); max = Vector3.Max(max, _max[j]); }
@@ -86,7 +86,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
             _sum = new Vector128<float>[capacity];
             _change = new Vector128<float>[capacity];
         }
-        _nodeJobs = Math.Min(_grid.Nz, dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 2);
+        _nodeJobs = Math.Min(_grid.Nz, dispatcher.ThreadCount);
         _invTarget = (float)(1.0 / (settings.Density * (double)rest));
         double dt = ctx.Dt;
         _push = (float)(settings.Stiffness * BendProfile.StandardGravity * dt);
@@ -98,7 +98,6 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
             int np = w.ParticleCount;
             _pushX = new float[np]; _pushY = new float[np]; _pushZ = new float[np]; _share = new float[np];
         }
-        _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount == 1 ? 1 : dispatcher.ThreadCount * 4);
 
         dispatcher.Run(Partitions, _splatJob);
         dispatcher.Run(_nodeJobs, _reduceJob);
