@@ -132,6 +132,9 @@ public static class CliOptions
     /// An output file, checked before any work starts: its folder is created if missing and a file can be written there
     /// (a run that fails only at its end, after minutes, writing to a read-only folder, is worse). Fails with exit code 5.
     /// </summary>
+    /// <summary>An output path as a generated document names it: as typed, with forward slashes.</summary>
+    public static string Shown(string path) => path.Replace('\\', '/');
+
     public static string CheckOutputFile(string path, string option)
     {
         EnsureWritable(Path.GetDirectoryName(Path.GetFullPath(path)) ?? ".", option);
