@@ -156,6 +156,12 @@ public sealed class CommandLineTests : IDisposable
         var run = CliApp.Build().Subcommands.Single(c => c.Name == "run");
         foreach (var name in new[] { "--seconds", "--hz", "--substeps", "--path", "--shake", "--paced", "--volume", "--bend", "--head", "--sdf-cell", "--hairstyle", "--export", "--sheets", "--strands", "--particles" })
             Assert.Contains(run.Options, o => o.Name == name);
+        // Reports go into out/ unless --out says otherwise: a plain run never overwrites the repository's docs.
+        foreach (var (command, file) in new[] { ("report", "out/error-vs-runtime.md"), ("stability", "out/stability.md"), ("leave-out", "out/leave-out.md") })
+        {
+            Assert.Contains(file, Run(command, "--help").Output);
+            Assert.DoesNotContain("docs/", Run(command, "--help").Output);
+        }
     }
 
     [Fact]
