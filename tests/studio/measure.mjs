@@ -66,7 +66,7 @@ await browser.close();
 
 const table = [
   `Measured by \`node tests/studio/measure.mjs\` on ${os.cpus().length} cores (${os.cpus()[0]?.model ?? 'unknown CPU'}), headless`,
-  'Chromium with software WebGL (SwiftShader: no GPU on this machine), server and browser on the same cores,',
+  'Chromium with software WebGL (SwiftShader: the machine that measured it has no GPU), server and browser on the same cores,',
   `${seconds} s per groom after 2 s of warm-up. "Simulation" counts 1/60 s frames stepped per wall second (60 = real time);`,
   '"received" and "drawn" are what the page fetched and rendered per second.',
   '',
