@@ -5,8 +5,9 @@ namespace HairSim;
 public enum ColliderKind { Ellipsoid, Sphere, Capsule }
 
 /// <summary>
-/// A head-attached collider, in head space (it moves with the head). Plain data: the collide system
-/// turns it into world space once per substep. Constructors validate; a degenerate shape is refused.
+/// A collider in head space (it moves with the head), or, made with <see cref="InWorldSpace"/>, fixed in the world (a
+/// floor, a table, shoulders the caller places each frame). Plain data: the collide system turns it into world space once
+/// per substep. Constructors validate; a degenerate shape is refused.
 /// </summary>
 public readonly struct Collider
 {
@@ -17,13 +18,18 @@ public readonly struct Collider
     public readonly Vector3 End;
     /// <summary>Ellipsoid semi-axes; for sphere and capsule X holds the radius.</summary>
     public readonly Vector3 Radii;
-    /// <summary>Ellipsoid orientation relative to the head.</summary>
+    /// <summary>Ellipsoid orientation relative to the head (to the world when <see cref="InWorld"/>).</summary>
     public readonly Quaternion Rotation;
+    /// <summary>True for a collider given in world space: the head's pose does not move it.</summary>
+    public readonly bool InWorld;
 
-    private Collider(ColliderKind kind, Vector3 center, Vector3 end, Vector3 radii, Quaternion rotation)
+    private Collider(ColliderKind kind, Vector3 center, Vector3 end, Vector3 radii, Quaternion rotation, bool inWorld = false)
     {
-        Kind = kind; Center = center; End = end; Radii = radii; Rotation = rotation;
+        Kind = kind; Center = center; End = end; Radii = radii; Rotation = rotation; InWorld = inWorld;
     }
+
+    /// <summary>The same shape read as world coordinates: it stays where it is while the head moves.</summary>
+    public Collider InWorldSpace() => new(Kind, Center, End, Radii, Rotation, inWorld: true);
 
     public float Radius => Radii.X;
 
@@ -61,8 +67,8 @@ public readonly struct Collider
             throw new ArgumentException($"{name} must be finite, got {v}.", name);
     }
 
-    /// <summary>This collider placed by a head pose.</summary>
-    public Collider ToWorld(in RigidTransform head) =>
+    /// <summary>This collider placed by a head pose (a world-space collider is already placed).</summary>
+    public Collider ToWorld(in RigidTransform head) => InWorld ? this :
         new(Kind, head.TransformPoint(Center), head.TransformPoint(End), Radii, Quaternion.Normalize(head.Rotation * Rotation));
 
     /// <summary>

@@ -23,6 +23,8 @@ public static class HairstyleFile
     public const int OldestVersion = 1;
     private const int SettingsBytes = 84;
     public const int MaxColliders = 256;
+    /// <summary>Set in a collider's kind word for a collider fixed in the world (files without it read as head-attached).</summary>
+    private const int WorldColliderFlag = 0x100;
     public const int HeaderBytes = 24;
     private const int BufferCount = 15;
     private static ReadOnlySpan<byte> Magic => "HAIRSTYL"u8;
@@ -60,7 +62,7 @@ public static class HairstyleFile
         o.Vec(w.Head.Position); o.Quat(w.Head.Rotation);
 
         o.Int(scene.Colliders.Count);
-        foreach (var c in scene.Colliders) { o.Int((int)c.Kind); o.Vec(c.Center); o.Vec(c.End); o.Vec(c.Radii); o.Quat(c.Rotation); }
+        foreach (var c in scene.Colliders) { o.Int((int)c.Kind | (c.InWorld ? WorldColliderFlag : 0)); o.Vec(c.Center); o.Vec(c.End); o.Vec(c.Radii); o.Quat(c.Rotation); }
 
         o.Int(w.SheetCount);
         for (int q = 0; q < w.SheetCount; q++) o.Int(w.SheetStrandCount[q]);
@@ -158,7 +160,7 @@ public static class HairstyleFile
         var colliders = new Collider[nc];
         for (int c = 0; c < nc; c++)
         {
-            int kind = r.Int();
+            int word = r.Int(), kind = word & ~WorldColliderFlag;
             Vector3 center = r.Vec(), end = r.Vec(), radii = r.Vec();
             var rot = r.Quat();
             colliders[c] = kind switch
@@ -166,8 +168,9 @@ public static class HairstyleFile
                 (int)ColliderKind.Ellipsoid => Collider.Ellipsoid(center, radii, rot),
                 (int)ColliderKind.Sphere => Collider.Sphere(center, radii.X),
                 (int)ColliderKind.Capsule => Collider.Capsule(center, end, radii.X),
-                _ => throw new InvalidDataException($"Collider {c} has unknown kind {kind}."),
+                _ => throw new InvalidDataException($"Collider {c} has unknown kind {word}."),
             };
+            if ((word & WorldColliderFlag) != 0) colliders[c] = colliders[c].InWorldSpace();
         }
 
         int sheets = r.Count(HairWorld.MaxParticles / 2, 4 + 8 + 8 * BufferCount, "sheets");
