@@ -166,8 +166,15 @@ public sealed class StudioSession : IDisposable
             }
             var st = _scene.Settings;
             var colliders = new List<ColliderState>(_scene.Colliders.Count);
-            foreach (var c in _scene.Colliders)
-                colliders.Add(new ColliderState(c.Kind.ToString(), Arr(c.Center), Arr(c.End), Arr(c.Radii), [c.Rotation.X, c.Rotation.Y, c.Rotation.Z, c.Rotation.W]));
+            foreach (var collider in _scene.Colliders)
+            {
+                // The page draws colliders in head space; one fixed in the world is drawn where the head now sees it.
+                var c = collider;
+                var center = c.InWorld ? w.Head.InverseTransformPoint(c.Center) : c.Center;
+                var end = c.InWorld ? w.Head.InverseTransformPoint(c.End) : c.End;
+                var rotation = c.InWorld ? Quaternion.Conjugate(w.Head.Rotation) * c.Rotation : c.Rotation;
+                colliders.Add(new ColliderState(c.Kind.ToString(), Arr(center), Arr(end), Arr(c.Radii), [rotation.X, rotation.Y, rotation.Z, rotation.W]));
+            }
             var selected = _selection?.Strands.ToArray() ?? [];
             return new StudioState(
                 _groomName, StudioGrooms.All.Select(g => new GroomChoice(g.Name, g.Description)).ToArray(), _groomWorld != null,
