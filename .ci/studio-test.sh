@@ -24,7 +24,10 @@ dotnet build -c Release src/HairSim.Cli -nologo -v q >/dev/null || { echo "studi
 tap=$(mktemp)
 (cd tests/studio && STUDIO_ARTIFACTS="${STUDIO_ARTIFACTS:-$PWD/artifacts}" node --test --test-reporter=tap studio.test.mjs) >"$tap" 2>&1
 status=$?
-grep -E "^ *(not )?ok |^ +(error|message):" "$tap" | sed 's/^/  /'
+# Results, and each failure's error text: the lines of a YAML "error: |-" block are indented deeper than the key.
+awk '/^ *(not )?ok /{print; depth=-1; next}
+     /^ +(error|message):/{print; match($0, /^ +/); depth=RLENGTH; next}
+     depth>=0 { match($0, /^ +/); if (RLENGTH>depth) {print; next} else depth=-1 }' "$tap" | sed 's/^/  /'
 pass=$(grep -Eo '^# pass [0-9]+' "$tap" | awk '{print $3}')
 fail=$(grep -Eo '^# fail [0-9]+' "$tap" | awk '{print $3}')
 skipped=$(grep -Eo '^# skipped [0-9]+' "$tap" | awk '{print $3}')
