@@ -215,6 +215,27 @@ public sealed class HairWorld
         MarkEdited();
     }
 
+    /// <summary>
+    /// As <see cref="SetStrand(int, ReadOnlySpan{Vector3}, int, bool)"/>, but the strand starts away from its rest shape:
+    /// <paramref name="startWorld"/> (world space, one point per rest point) is where its free particles are now, and the
+    /// bend model brings it towards the rest shape from there. Pinned points start where the head puts their rest.
+    /// Every point is checked before anything changes.
+    /// </summary>
+    public void SetStrand(int strand, ReadOnlySpan<Vector3> restHeadSpace, ReadOnlySpan<Vector3> startWorld, int pinned = 1, bool straightRestShape = false)
+    {
+        if (startWorld.Length != restHeadSpace.Length)
+            throw new ArgumentException($"The start pose has {startWorld.Length} points but the rest shape {restHeadSpace.Length}: give one start point per rest point.", nameof(startWorld));
+        for (int k = 0; k < startWorld.Length; k++)
+        {
+            var p = startWorld[k];
+            if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z))
+                throw new ArgumentException($"Start point {k} of strand {strand} is not finite.", nameof(startWorld));
+        }
+        SetStrand(strand, restHeadSpace, pinned, straightRestShape);
+        int first = StrandFirst[strand];
+        for (int k = pinned; k < startWorld.Length; k++) PutPosition(first + k, startWorld[k]);
+    }
+
     /// <summary>Puts every live particle back at its rest pose under the current head, at rest.</summary>
     public void ResetToRest()
     {
