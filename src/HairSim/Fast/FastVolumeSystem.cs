@@ -36,7 +36,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     // Per particle of the sample strands: D and S interpolated there (zeros where nothing was sampled), so a particle's
     // change is Σ t·(D − S·v) over its two samples.
     private float[] _pushX = [], _pushY = [], _pushZ = [], _share = [];
-    private int[] _strides = [];
+    private int _every;
     private readonly Action<int> _boundsJob, _splatJob, _reduceJob, _gradientJob, _gatherJob;
 
     // The frame being run (set before the passes fork).
@@ -62,14 +62,14 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         var w = scene.World;
         if (w.StrandCount == 0) return;
         float cell = settings.CellSize * ctx.Scale.Segment;
-        _rest.Update(w, cell, settings.SampleEvery);
+        _rest.Update(w, cell);
         float rest = _rest.Density;
         if (!(rest > 0f)) return;
         var dispatcher = ctx.Dispatcher;
         _w = w;
         _ctx = ctx;
 
-        _strides = _rest.Strides;
+        _every = settings.SampleEvery;
         _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount);
         dispatcher.Run(_sheetJobs, _boundsJob);
         var min = _min[0]; var max = _max[0];
@@ -123,7 +123,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         for (int q = sheetBegin; q < sheetEnd; q++)
         for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j++)
         {
-            if (!VolumeSampling.IsSample(j, count, _strides[q])) continue;
+            if (!VolumeSampling.IsSample(j, count, _every)) continue;
             int s = first + j;
             int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s];
             for (; i + 8 <= e; i += 8)
@@ -160,8 +160,8 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         for (int q = sheetBegin; q < sheetEnd; q++)
         for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j++)
         {
-            if (!VolumeSampling.IsSample(j, count, _strides[q])) continue;
-            float weight = (float)VolumeSampling.Weight(count, _strides[q]);
+            if (!VolumeSampling.IsSample(j, count, _every)) continue;
+            float weight = (float)VolumeSampling.Weight(count, _every);
             int s = first + j;
             int i = strandFirst[s], e = i + strandCount[s];
             if ((uint)e > (uint)posX.Length || (uint)e > (uint)velX.Length || (uint)e > (uint)invMass.Length
@@ -270,11 +270,11 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         {
             int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q];
             for (int j = 0; j < count; j++)
-                if (VolumeSampling.IsSample(j, count, _strides[q])) SampleStrand(first + j);
+                if (VolumeSampling.IsSample(j, count, _every)) SampleStrand(first + j);
             if (_inert) continue;
             for (int j = 0; j < count; j++)
             {
-                var (a, b, t) = VolumeSampling.Bracket(j, count, _strides[q]);
+                var (a, b, t) = VolumeSampling.Bracket(j, count, _every);
                 Apply(first + j, first + a, first + b, (float)t);
             }
         }

@@ -43,11 +43,10 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
         if (ctx.Teleported) return;
         var w = scene.World;
         float cell = settings.CellSize * ctx.Scale.Segment;
-        _rest.Update(w, cell, settings.SampleEvery);
+        _rest.Update(w, cell);
         float rest = _rest.Density;
-        var strides = _rest.Strides;
         if (!(rest > 0f)) return;
-        if (!FitToSamples(w, _grid, cell, strides)) return;
+        if (!FitToSamples(w, _grid, cell, settings.SampleEvery)) return;
         int n = _grid.NodeCount;
         if (_rho.Length < n)
         {
@@ -59,7 +58,7 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
 
         for (int q = 0; q < w.SheetCount; q++)
         {
-            int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q], every = strides[q];
+            int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q], every = settings.SampleEvery;
             double weight = VolumeSampling.Weight(count, every);
             for (int j = 0; j < count; j++)
             {
@@ -103,7 +102,7 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
         bool inert = settings.IsInert;
         for (int q = 0; q < w.SheetCount; q++)
         {
-            int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q], every = strides[q];
+            int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q], every = settings.SampleEvery;
             for (int j = 0; j < count; j++)
             {
                 var (a, b, t) = VolumeSampling.Bracket(j, count, every);
@@ -162,13 +161,13 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
     /// Fits the grid to the bounds of the sample strands' live particles (pinned roots included: they lie inside the hair
     /// anyway): only the samples are ever splatted or sampled.
     /// </summary>
-    internal static bool FitToSamples(HairWorld w, VolumeGrid grid, float cell, int[] strides)
+    internal static bool FitToSamples(HairWorld w, VolumeGrid grid, float cell, int every)
     {
         var min = new Vector3(float.MaxValue); var max = new Vector3(float.MinValue);
         for (int q = 0; q < w.SheetCount; q++)
             for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j++)
             {
-                if (!VolumeSampling.IsSample(j, count, strides[q])) continue;
+                if (!VolumeSampling.IsSample(j, count, every)) continue;
                 int s = first + j;
                 for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
                 {
@@ -194,19 +193,6 @@ public static class VolumeSampling
         return (double)n / samples;
     }
 
-    /// <summary>
-    /// Each sheet's stride: every how many strands a sample is taken (<see cref="VolumeSettings.SampleEvery"/>, or the
-    /// whole sheet's width for a narrower sheet). Choosing it from the rest spacing (every strand where strands lie a cell
-    /// apart) was tried and measured: the crossing-sheets case then sank at 3–8 % of its crossings instead of 0–5 %, and
-    /// the reference groom cost more, so the stride is the setting's.
-    /// </summary>
-    public static int[] Strides(HairWorld w, float cell, int every)
-    {
-        var strides = new int[w.SheetCount];
-        for (int q = 0; q < w.SheetCount; q++) strides[q] = Math.Max(1, Math.Min(every, w.SheetStrandCount[q] - 1));
-        return strides;
-    }
-
     /// <summary>The samples around strand j (A ≤ j ≤ B) and j's place between them (0 at A, 1 at B).</summary>
     public static (int A, int B, double T) Bracket(int j, int n, int every)
     {
@@ -228,23 +214,20 @@ internal readonly record struct Vec3d(double X, double Y, double Z)
 }
 
 /// <summary>
-/// What the volume needs from the rest pose (<see cref="VolumeGrid.RestDensity"/> and <see cref="VolumeSampling.Strides"/>),
-/// recomputed only after an edit or a change of cell size or sampling.
+/// The rest pose's density (<see cref="VolumeGrid.RestDensity"/>), recomputed only after an edit or a change of cell size.
 /// </summary>
 internal sealed class VolumeRestCache
 {
     private HairWorld? _world;
-    private int _stamp, _every;
+    private int _stamp;
     private float _cell;
 
     public float Density { get; private set; }
-    public int[] Strides { get; private set; } = [];
 
-    public void Update(HairWorld w, float cell, int every)
+    public void Update(HairWorld w, float cell)
     {
-        if (ReferenceEquals(w, _world) && w.EditStamp == _stamp && cell == _cell && every == _every) return;
+        if (ReferenceEquals(w, _world) && w.EditStamp == _stamp && cell == _cell) return;
         Density = VolumeGrid.RestDensity(w, cell);
-        Strides = VolumeSampling.Strides(w, cell, every);
-        _world = w; _stamp = w.EditStamp; _cell = cell; _every = every;
+        _world = w; _stamp = w.EditStamp; _cell = cell;
     }
 }
