@@ -40,13 +40,8 @@ public sealed partial class FastBendSystem
         {
             St16(ref s, Sqx * lanes + h, Vector512.Create(p.Qx)); St16(ref s, Sqy * lanes + h, Vector512.Create(p.Qy));
             St16(ref s, Sqz * lanes + h, Vector512.Create(p.Qz)); St16(ref s, Sqw * lanes + h, Vector512.Create(p.Qw));
-            St16(ref s, Spx * lanes + h, Ld16(ref d, p.Ox + h)); St16(ref s, Spy * lanes + h, Ld16(ref d, p.Oy + h));
-            St16(ref s, Spz * lanes + h, Ld16(ref d, p.Oz + h));
-            // The root's parent is the head, taken as still within a substep.
-            St16(ref s, Sux * lanes + h, c.H * Ld16(ref d, p.Ovx + h)); St16(ref s, Suy * lanes + h, c.H * Ld16(ref d, p.Ovy + h));
-            St16(ref s, Suz * lanes + h, c.H * Ld16(ref d, p.Ovz + h));
-            // Direction, turn and correction start at zero, and the root is never kicked (its free mask is clear).
-            for (int slot = Sdx; slot <= SFree; slot++) St16(ref s, slot * lanes + h, zero);
+            // Direction, turn and correction start at zero. The root is never kicked: it follows the head.
+            for (int slot = Sdx; slot < Slots; slot++) St16(ref s, slot * lanes + h, zero);
         }
         for (int k = 1; k < rows; k++)
         {
@@ -54,7 +49,7 @@ public sealed partial class FastBendSystem
             {
                 int r = k * lanes + h;
                 var qx = Ld16(ref s, Sqx * lanes + h); var qy = Ld16(ref s, Sqy * lanes + h); var qz = Ld16(ref s, Sqz * lanes + h); var qw = Ld16(ref s, Sqw * lanes + h);
-                var px = Ld16(ref s, Spx * lanes + h); var py = Ld16(ref s, Spy * lanes + h); var pz = Ld16(ref s, Spz * lanes + h);
+                var px = Ld16(ref d, p.Ox + r - lanes); var py = Ld16(ref d, p.Oy + r - lanes); var pz = Ld16(ref d, p.Oz + r - lanes);
                 var x = Ld16(ref d, p.Ox + r); var y = Ld16(ref d, p.Oy + r); var z = Ld16(ref d, p.Oz + r);
                 var free = ~Vector512.Equals(Ld16(ref d, p.Om + r), zero);
                 var rl = Ld16(ref d, p.Ol + r);
@@ -85,7 +80,9 @@ public sealed partial class FastBendSystem
                 if (!AllSet(okLen)) { dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz); }
                 // How far this segment turned since the substep's start (see BendSystem).
                 var hvx = c.H * Ld16(ref d, p.Ovx + r); var hvy = c.H * Ld16(ref d, p.Ovy + r); var hvz = c.H * Ld16(ref d, p.Ovz + r);
-                var ux = hvx - Ld16(ref s, Sux * lanes + h); var uy = hvy - Ld16(ref s, Suy * lanes + h); var uz = hvz - Ld16(ref s, Suz * lanes + h);
+                var ux = hvx - (c.H * Ld16(ref d, p.Ovx + r - lanes) + Ld16(ref s, SDx * lanes + h));
+                var uy = hvy - (c.H * Ld16(ref d, p.Ovy + r - lanes) + Ld16(ref s, SDy * lanes + h));
+                var uz = hvz - (c.H * Ld16(ref d, p.Ovz + r - lanes) + Ld16(ref s, SDz * lanes + h));
                 var along = ux * dx + uy * dy + uz * dz;
                 var tcx = (ux - along * dx) * inv; var tcy = (uy - along * dy) * inv; var tcz = (uz - along * dz) * inv;
                 // Target turned with the parent: Δt = (d_p × c_p) × t.
@@ -119,20 +116,17 @@ public sealed partial class FastBendSystem
                 x += cdx; y += cdy; z += cdz;
                 St16(ref d, p.Ox + r, x); St16(ref d, p.Oy + r, y); St16(ref d, p.Oz + r, z);
                 // The row above takes its kick now that this row's correction is known.
-                Kick16(ref d, in p, in c, r - lanes, (Ld16(ref s, SFree * lanes + h)),
+                Kick16(ref d, in p, in c, r - lanes, k == 1 ? zero : ~Vector512.Equals(Ld16(ref d, p.Om + r - lanes), zero),
                     Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h),
                     cdx + (allFree ? c.FallX : Sel16(free, c.FallX, zero)), cdy + (allFree ? c.FallY : Sel16(free, c.FallY, zero)),
                     cdz + (allFree ? c.FallZ : Sel16(free, c.FallZ, zero)));
                 St16(ref s, SDx * lanes + h, cdx); St16(ref s, SDy * lanes + h, cdy); St16(ref s, SDz * lanes + h, cdz);
-                St16(ref s, SFree * lanes + h, free);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
                 along = ux * dx + uy * dy + uz * dz;
                 St16(ref s, Scx * lanes + h, (ux - along * dx) * inv); St16(ref s, Scy * lanes + h, (uy - along * dy) * inv);
                 St16(ref s, Scz * lanes + h, (uz - along * dz) * inv);
                 St16(ref s, Sdx * lanes + h, dx); St16(ref s, Sdy * lanes + h, dy); St16(ref s, Sdz * lanes + h, dz);
-                St16(ref s, Sux * lanes + h, hvx + cdx); St16(ref s, Suy * lanes + h, hvy + cdy); St16(ref s, Suz * lanes + h, hvz + cdz);
-                St16(ref s, Spx * lanes + h, x); St16(ref s, Spy * lanes + h, y); St16(ref s, Spz * lanes + h, z);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
                 var dot = tx * dx + ty * dy + tz * dz;
                 var fx = ty * dz - tz * dy; var fy = tz * dx - tx * dz; var fz = tx * dy - ty * dx; var fw = one + dot;
@@ -152,7 +146,7 @@ public sealed partial class FastBendSystem
         }
         if (rows < 2) return;
         for (int h = 0; h < lanes; h += width)
-            Kick16(ref d, in p, in c, (rows - 1) * lanes + h, (Ld16(ref s, SFree * lanes + h)),
+            Kick16(ref d, in p, in c, (rows - 1) * lanes + h, ~Vector512.Equals(Ld16(ref d, p.Om + (rows - 1) * lanes + h), zero),
                 Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h), zero, zero, zero);
     }
 
