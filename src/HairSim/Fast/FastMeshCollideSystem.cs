@@ -122,11 +122,17 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         {
             var previous = Vector256<float>.Zero;
             var all = Vector256<float>.AllBitsSet;
+            // Rows pinned in every lane (the roots) are never moved, and neither is a segment between two of them:
+            // such a row's distance is needed only as the previous one of a segment that can move. Skipping the rest
+            // changes no decision and no value (the roots are always near the scalp, so these were exact samples).
+            bool pinnedBefore = false, pinned = height > 0 && AllPinned(in r, (nuint)g);
             for (int k = 0; k < height; k++)
             {
                 nuint o = (nuint)(k * StrandChunk.Lanes + g);
+                bool pinnedNext = k + 1 < height && AllPinned(in r, o + StrandChunk.Lanes);
+                if (pinned && pinnedNext) { pinnedBefore = true; pinned = true; continue; }
                 var d = PushOut(all, r, o);
-                if (k > 0)
+                if (k > 0 && !(pinned && pinnedBefore))
                 {
                     var alive = Vector256.GreaterThan(live, Vector256.Create(k)).AsSingle();
                     var rest = Vector256.LoadUnsafe(ref r.Rest, o);
@@ -134,8 +140,13 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                     if (test != Vector256<float>.Zero) d = Midpoint(test, r, o - StrandChunk.Lanes, o, d);
                 }
                 previous = d;
+                pinnedBefore = pinned; pinned = pinnedNext;
             }
         }
+
+        /// <summary>Every lane of the row at o pinned (inverse mass 0).</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private static bool AllPinned(in Rows r, nuint o) => Vector256.EqualsAll(Vector256.LoadUnsafe(ref r.M, o), Vector256<float>.Zero);
 
         /// <summary>Head space: Rᵀ(p − t).</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
