@@ -18,6 +18,8 @@ public sealed class MeshGroomSettings
     public float Drape { get; set; } = 1f;
     /// <summary>Where hair grows: a vertex whose colour's red channel is at least this is scalp (0 = everywhere; meshes without colours grow everywhere).</summary>
     public float ScalpMaskThreshold { get; set; }
+    /// <summary>A painted scalp (<see cref="ScalpPaint"/>, made for this mesh): when set, its triangles are the scalp and the colour mask is not used.</summary>
+    public ScalpPaint? Scalp { get; set; }
     /// <summary>Further limit on the scalp (head space); null = none. For example "above the ears": p => p.Y > 0.</summary>
     public Func<Vector3, Vector3, bool>? ScalpFilter { get; set; }
     public ulong Seed { get; set; } = 2009;
@@ -58,6 +60,8 @@ public static class MeshScalp
         ArgumentNullException.ThrowIfNull(field);
         ArgumentNullException.ThrowIfNull(g);
         g.Validate();
+        if (g.Scalp != null && !ReferenceEquals(g.Scalp.Mesh, mesh) && g.Scalp.Mesh.TriangleCount != mesh.TriangleCount)
+            throw new ArgumentException($"The painted scalp was made for a mesh of {g.Scalp.Mesh.TriangleCount} triangles; this one has {mesh.TriangleCount}.", nameof(g));
         var rng = new Random(unchecked((int)g.Seed));
         int want = g.SheetCount * g.StrandsPerSheet;
 
@@ -131,7 +135,8 @@ public static class MeshScalp
 
     private static bool OnScalp(TriangleMesh mesh, MeshGroomSettings g, int t)
     {
-        if (g.ScalpMaskThreshold > 0f && mesh.Colors != null)
+        if (g.Scalp != null) { if (!g.Scalp.IsScalp(t)) return false; }
+        else if (g.ScalpMaskThreshold > 0f && mesh.Colors != null)
         {
             var c = mesh.Colors;
             var idx = mesh.Indices;

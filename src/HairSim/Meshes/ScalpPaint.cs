@@ -1,0 +1,140 @@
+using System.Numerics;
+using HairSim.Editing;
+
+namespace HairSim.Meshes;
+
+/// <summary>Whether a paint stroke marks triangles as scalp or clears them.</summary>
+public enum ScalpPaintMode { Add, Remove }
+
+/// <summary>
+/// The scalp of a head mesh painted with strokes: which triangles grow hair. A stroke is a screen-space area
+/// (<see cref="SelectionArea"/>: rectangle, lasso or brush) seen through a <see cref="StrokeCamera"/>, the same
+/// machinery as cut and fit; it marks the triangles whose centre it covers, that face the camera and (given an
+/// occluder) that the mesh itself does not hide, so painting the front of the head does not reach the back. Every
+/// stroke that changes something is one undo step. Give it to <see cref="MeshGroomSettings.Scalp"/> to grow there.
+/// </summary>
+public sealed class ScalpPaint
+{
+    private readonly bool[] _scalp;
+    private readonly List<Step> _undo = [], _redo = [];
+
+    /// <summary>One stroke: the triangles it changed and the value it set them to.</summary>
+    private readonly record struct Step(int[] Triangles, bool Value);
+
+    /// <param name="mesh">The head mesh (head space, as the groom and the field use it).</param>
+    /// <param name="everywhere">Start with every triangle marked (then paint away), or none (then paint on).</param>
+    public ScalpPaint(TriangleMesh mesh, bool everywhere = false)
+    {
+        ArgumentNullException.ThrowIfNull(mesh);
+        Mesh = mesh;
+        _scalp = new bool[mesh.TriangleCount];
+        if (everywhere) Array.Fill(_scalp, true);
+    }
+
+    /// <summary>The scalp a vertex-colour mask gives (red at least <paramref name="threshold"/>; everywhere without colours), to paint on from there.</summary>
+    public static ScalpPaint FromVertexColours(TriangleMesh mesh, float threshold)
+    {
+        ArgumentNullException.ThrowIfNull(mesh);
+        if (!float.IsFinite(threshold) || threshold < 0f || threshold > 1f)
+            throw new ArgumentOutOfRangeException(nameof(threshold), threshold, "The mask threshold must be 0 … 1.");
+        var paint = new ScalpPaint(mesh, everywhere: mesh.Colors == null);
+        if (mesh.Colors == null) return paint;
+        var c = mesh.Colors; var idx = mesh.Indices;
+        for (int t = 0; t < mesh.TriangleCount; t++)
+            paint._scalp[t] = (c[idx[3 * t]].X + c[idx[3 * t + 1]].X + c[idx[3 * t + 2]].X) / 3f >= threshold;
+        return paint;
+    }
+
+    public TriangleMesh Mesh { get; }
+    /// <summary>Per triangle of <see cref="Mesh"/>: scalp or not.</summary>
+    public ReadOnlySpan<bool> Triangles => _scalp;
+    public bool IsScalp(int triangle) => _scalp[triangle];
+
+    /// <summary>Scalp triangles.</summary>
+    public int Count
+    {
+        get { int n = 0; foreach (bool b in _scalp) if (b) n++; return n; }
+    }
+
+    /// <summary>Scalp area, square metres (head space).</summary>
+    public double Area
+    {
+        get { double a = 0; for (int t = 0; t < _scalp.Length; t++) if (_scalp[t]) a += Mesh.TriangleArea(t); return a; }
+    }
+
+    public bool CanUndo => _undo.Count > 0;
+    public bool CanRedo => _redo.Count > 0;
+
+    /// <summary>
+    /// Marks (or clears) the triangles under <paramref name="area"/> seen through <paramref name="camera"/>, with the
+    /// mesh at <paramref name="head"/> in the world. A triangle counts when its centre projects inside the area, its
+    /// face turns towards the camera and, when <paramref name="occluder"/> is given (the mesh's collider), nothing of
+    /// the mesh lies between the camera and that centre. Returns how many triangles changed; a stroke that changes
+    /// none leaves no undo step. Nothing changes if an argument is invalid.
+    /// </summary>
+    public int Paint(StrokeCamera camera, SelectionArea area, ScalpPaintMode mode, in RigidTransform head, MeshCollider? occluder = null)
+    {
+        ArgumentNullException.ThrowIfNull(camera);
+        ArgumentNullException.ThrowIfNull(area);
+        if (mode is not (ScalpPaintMode.Add or ScalpPaintMode.Remove)) throw new ArgumentOutOfRangeException(nameof(mode), mode, "Unknown paint mode.");
+        bool value = mode == ScalpPaintMode.Add;
+        var changed = new List<int>();
+        var pose = occluder?.PoseFor(head) ?? head;
+        for (int t = 0; t < _scalp.Length; t++)
+        {
+            if (_scalp[t] == value) continue;
+            var (a, b, c) = Mesh.Triangle(t);
+            var centre = head.TransformPoint((a + b + c) / 3f);
+            if (!camera.Project(centre, out var screen, out _) || !area.Contains(screen)) continue;
+            var normal = head.TransformDirection(Mesh.FaceNormal(t));
+            var toCamera = camera.Kind == CameraProjection.Perspective ? camera.Position - centre : -camera.Forward;
+            if (Vector3.Dot(normal, toCamera) <= 0f) continue;
+            if (occluder != null && Hidden(occluder, pose, camera, centre)) continue;
+            changed.Add(t);
+        }
+        if (changed.Count == 0) return 0;
+        var step = new Step(changed.ToArray(), value);
+        Apply(step, forward: true);
+        _undo.Add(step);
+        _redo.Clear();
+        return step.Triangles.Length;
+    }
+
+    /// <summary>Takes back the last stroke that changed something.</summary>
+    public bool Undo()
+    {
+        if (_undo.Count == 0) return false;
+        var step = _undo[^1];
+        _undo.RemoveAt(_undo.Count - 1);
+        Apply(step, forward: false);
+        _redo.Add(step);
+        return true;
+    }
+
+    /// <summary>Applies the last undone stroke again.</summary>
+    public bool Redo()
+    {
+        if (_redo.Count == 0) return false;
+        var step = _redo[^1];
+        _redo.RemoveAt(_redo.Count - 1);
+        Apply(step, forward: true);
+        _undo.Add(step);
+        return true;
+    }
+
+    private void Apply(Step step, bool forward)
+    {
+        // A stroke only ever changes triangles that held the other value, so undoing sets them back to it.
+        foreach (int t in step.Triangles) _scalp[t] = forward ? step.Value : !step.Value;
+    }
+
+    /// <summary>Does the mesh cover the point from the camera? The trace stops two cells short of it (the point's own surface).</summary>
+    private static bool Hidden(MeshCollider occluder, in RigidTransform pose, StrokeCamera camera, Vector3 point)
+    {
+        Vector3 origin, dir;
+        if (camera.Kind == CameraProjection.Perspective) { origin = camera.Position; dir = Vector3.Normalize(point - origin); }
+        else { dir = camera.Forward; origin = point - dir * 1000f * MathF.Max(1f, occluder.Field.CellSize); }
+        float reach = Vector3.Dot(point - origin, dir) - MathF.Max(0.002f, 2f * occluder.Field.CellSize);
+        return reach > 0f && ColliderRay.Intersect(occluder, pose, origin, dir, reach, out _);
+    }
+}
