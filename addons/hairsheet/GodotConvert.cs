@@ -29,6 +29,28 @@ public static class GodotConvert
     public static HairSim.RigidTransform ToHeadPose(this Transform3D t, out bool mirrored) =>
         HeadPoseMath.HeadPose(t.Basis.Column0.ToNumerics(), t.Basis.Column1.ToNumerics(), t.Basis.Column2.ToNumerics(), t.Origin.ToNumerics(), out mirrored);
 
+    /// <summary>
+    /// A mesh's triangle surfaces as Mesh.SurfaceGetArrays gives them (vertices, indices, colours; in the mesh's own
+    /// space and Godot's clockwise winding: <see cref="MeshSurfaces"/> turns them into a HairSim mesh). Surfaces of lines
+    /// or points are refused: a distance field or a scalp needs closed triangle surfaces.
+    /// </summary>
+    public static List<MeshSurfaces.Surface> ReadSurfaces(this Mesh mesh)
+    {
+        var surfaces = new List<MeshSurfaces.Surface>();
+        for (int i = 0; i < mesh.GetSurfaceCount(); i++)
+        {
+            // Only ArrayMesh says what its surfaces are; PrimitiveMesh (SphereMesh, BoxMesh…) surfaces are triangles.
+            if (mesh is ArrayMesh am && am.SurfaceGetPrimitiveType(i) != Mesh.PrimitiveType.Triangles)
+                throw new ArgumentException($"surface {i} of the mesh is made of {am.SurfaceGetPrimitiveType(i)}, not triangles.");
+            var arrays = mesh.SurfaceGetArrays(i);
+            var vertices = arrays[(int)Mesh.ArrayType.Vertex].AsVector3Array().Select(v => v.ToNumerics()).ToArray();
+            var indices = arrays[(int)Mesh.ArrayType.Index].AsInt32Array();
+            var colors = arrays[(int)Mesh.ArrayType.Color].AsColorArray().Select(c => c.ToNumerics()).ToArray();
+            surfaces.Add(new MeshSurfaces.Surface(vertices, indices, colors));
+        }
+        return surfaces;
+    }
+
     public static Aabb ToAabb(this StrandBounds b) =>
         b.IsEmpty ? new Aabb(Vector3.Zero, Vector3.Zero) : new Aabb(b.Min.ToGodot(), b.Size.ToGodot());
 

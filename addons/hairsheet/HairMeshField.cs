@@ -17,11 +17,19 @@ public partial class HairMeshField : Resource
     [Export] public float[] Distances { get; set; } = [];
     /// <summary>How long the bake took (shown in the inspector; informative only).</summary>
     [Export] public float BakeMilliseconds { get; set; }
+    /// <summary>
+    /// What the field was baked relative to (Logic/ColliderFollowMath.FrameName): "head", or the node (and bone) a
+    /// HairMeshCollider3D follows. A collider refuses a field baked in another frame. Fields baked before this was
+    /// recorded were all baked in head space, which is the default.
+    /// </summary>
+    [Export] public string Frame { get; set; } = "head";
+    /// <summary>For a scalp's field: the key of the mesh and cell size it was baked from (Logic/ScalpGrowth.FieldKey); empty otherwise.</summary>
+    [Export] public string SourceKey { get; set; } = "";
 
-    public static HairMeshField From(SignedDistanceField f) => new()
+    public static HairMeshField From(SignedDistanceField f, string frame = "head", string sourceKey = "") => new()
     {
         Origin = new Vector3(f.Origin.X, f.Origin.Y, f.Origin.Z), CellSize = f.CellSize, Cells = new Vector3I(f.Nx, f.Ny, f.Nz),
-        Distances = f.CopyDistances(), BakeMilliseconds = (float)f.BakeTime.TotalMilliseconds,
+        Distances = f.CopyDistances(), BakeMilliseconds = (float)f.BakeTime.TotalMilliseconds, Frame = frame, SourceKey = sourceKey,
     };
 
     /// <summary>The stored field, checked (a corrupt resource raises ArgumentException with the reason).</summary>

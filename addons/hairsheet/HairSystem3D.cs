@@ -78,6 +78,8 @@ public partial class HairSystem3D : Node3D
     private readonly Stopwatch _stepTimer = new();
     private RigidTransform _lastHeadPose = RigidTransform.Identity;
     private string? _headProblem;
+    // The mesh collider node whose field follows a node or bone in world space: placed before every step.
+    private HairMeshCollider3D? _followingField;
 
     // ---- Groom ----
     /// <summary>A saved groom (overrides the Groom numbers below when set).</summary>
@@ -210,12 +212,17 @@ public partial class HairSystem3D : Node3D
             catch (Exception e) when (e is ArgumentException or InvalidOperationException) { GD.PushError($"{Name}: {e.Message}"); }
             LastStepMilliseconds = _stepper.LastStepMilliseconds;
             Draw();
-            if (steps > 0) _stepper.Start((float)_clock.Step, steps, HeadPose());
+            if (steps > 0)
+            {
+                PlaceFollowingField(); // between the steps: the worker reads the placement
+                _stepper.Start((float)_clock.Step, steps, HeadPose());
+            }
             return;
         }
         if (steps == 0) return;
         _stepTimer.Restart();
         var head = HeadPose();
+        PlaceFollowingField();
         float dt = (float)_clock.Step;
         for (int i = 0; i < steps; i++) _simulation.Step(dt, head);
         LastStepMilliseconds = _stepTimer.Elapsed.TotalMilliseconds;
@@ -236,6 +243,12 @@ public partial class HairSystem3D : Node3D
 
     /// <summary>Called by child collider nodes when they move or change shape.</summary>
     public void CollidersChanged() => _collidersDirty = true;
+
+    /// <summary>
+    /// The rigid frame head-space colliders are given in: the head's global pose with scale and any reflection
+    /// stripped, exactly what the simulation places the head at (so a field baked in it lands where the mesh is).
+    /// </summary>
+    public RigidTransform HeadFrame() => HeadPose();
 
     /// <summary>Regrows the groom (drops unsaved edits) on the next physics frame.</summary>
     public void Invalidate()
@@ -516,11 +529,29 @@ public partial class HairSystem3D : Node3D
         scene.ClearColliders();
         foreach (var c in list) scene.AddCollider(c);
         // A mesh collider (HairMeshCollider3D with a baked field) joins as a scene component; the pipeline adds its system.
+        // The library takes one per scene: the first visible one with a usable field; any other is told it is ignored.
         HairSim.Meshes.MeshCollider? mesh = null;
+        _followingField = null;
         foreach (var child in GetChildren())
-            if (child is HairMeshCollider3D m && m.Visible && m.ToComponent() is { } component) { mesh = component; break; }
+        {
+            if (child is not HairMeshCollider3D m) continue;
+            if (!m.Visible) { m.SetIgnored(null); continue; }
+            if (mesh != null) { m.SetIgnored(OneMeshCollider); continue; }
+            m.SetIgnored(null);
+            if (m.ToComponent() is not { } component) continue;
+            mesh = component;
+            if (component.Space == HairSim.Meshes.ColliderSpace.World) _followingField = m;
+        }
         if (mesh != null) scene.SetComponent(mesh);
         else scene.RemoveComponent<HairSim.Meshes.MeshCollider>();
+    }
+
+    private const string OneMeshCollider = "A hair node collides with one mesh: another HairMeshCollider3D before this one is used, this one is ignored.";
+
+    /// <summary>Sets a followed field's world placement from its node or bone now (before the steps; allocates nothing).</summary>
+    private void PlaceFollowingField()
+    {
+        if (_followingField != null && IsInstanceValid(_followingField)) _followingField.PlaceField();
     }
 
     private void Draw()
