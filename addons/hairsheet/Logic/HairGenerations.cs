@@ -103,13 +103,20 @@ public static class GrowthKey
     /// <summary>
     /// The key of <paramref name="settings"/>, plus the groom of an assigned hairstyle resource and that resource's
     /// identity (two resources with the same groom hold different styles). The style data is left out: the node writes
-    /// it after every edit, so it follows the hair rather than choosing it.
+    /// it after every edit, so it follows the hair rather than choosing it. <paramref name="scalp"/> is the scalp mesh's
+    /// key (<see cref="ScalpGrowth.Key"/>) when the hair grows on a mesh: then the Scalp values count too.
     /// </summary>
-    public static string Of(HairNodeSettings settings, HairstyleRecord? style = null, ulong styleId = 0)
+    public static string Of(HairNodeSettings settings, HairstyleRecord? style = null, ulong styleId = 0, string? scalp = null)
     {
         ArgumentNullException.ThrowIfNull(settings);
         var sb = new StringBuilder();
-        foreach (var p in Inputs) sb.Append(p.Name).Append('=').Append(Text(p.GetValue(settings))).Append(';');
+        foreach (var p in Inputs)
+        {
+            // The scalp values grow nothing without a scalp mesh: changing them must not regrow the ellipsoid groom.
+            if (scalp == null && p.Name.StartsWith("Scalp", StringComparison.Ordinal)) continue;
+            sb.Append(p.Name).Append('=').Append(Text(p.GetValue(settings))).Append(';');
+        }
+        if (scalp != null) sb.Append("scalp:").Append(scalp).Append(';');
         if (style != null)
             sb.Append("style#").Append(styleId).Append(':')
               .Append(style.Sheets).Append(',').Append(style.StrandsPerSheet).Append(',').Append(style.ParticlesPerStrand).Append(',')

@@ -1,5 +1,6 @@
 using System.Numerics;
 using HairSim;
+using HairSim.Meshes;
 
 namespace HairSheet.Logic;
 
@@ -57,6 +58,16 @@ public sealed class HairNodeSettings
     public Vector3 HeadRadii { get; set; } = GroomSettings.Reference().HeadRadii;
     public ulong Seed { get; set; } = 2009;
 
+    // Growth on a scalp mesh (HairSystem3D's Scalp Mesh). Only part of the growth key when a scalp mesh is set (GrowthKey).
+    /// <summary>A vertex is scalp where its colour's red channel is at least this (0 = the whole mesh; a mesh without colours grows everywhere).</summary>
+    public float ScalpMaskThreshold { get; set; } = 0.5f;
+    /// <summary>Hair starts this far above the scalp (metres); the mesh collision keeps hair half of it off the surface.</summary>
+    public float ScalpRootLift { get; set; } = 0.002f;
+    /// <summary>0: strands stand out along the surface normal; 1: they turn to hang down within about a quarter of the head's size.</summary>
+    public float ScalpDrape { get; set; } = 1f;
+    /// <summary>Cell of the scalp's distance field: about a quarter of the thinnest part the hair must feel (2.5 mm for 1 cm ears).</summary>
+    public float ScalpCellSize { get; set; } = 0.0025f;
+
     public IReadOnlyList<string> Validate()
     {
         var p = new List<string>();
@@ -91,6 +102,10 @@ public sealed class HairNodeSettings
         IntRange(p, "Steps Per Second", StepsPerSecond, 10, 1000);
         if (!Finite(HeadRadii) || HeadRadii.X <= 1e-3f || HeadRadii.Y <= 1e-3f || HeadRadii.Z <= 1e-3f || HeadRadii.Length() > 10f)
             p.Add($"Head Radii must be positive and finite (each > 1 mm, at most 10 m), got {HeadRadii}.");
+        FloatRange(p, "Scalp Mask Threshold", ScalpMaskThreshold, 0f, 1f);
+        FloatRange(p, "Scalp Root Lift", ScalpRootLift, 0f, 0.05f);
+        FloatRange(p, "Scalp Drape", ScalpDrape, 0f, 1f);
+        FloatRange(p, "Scalp Cell Size", ScalpCellSize, 0.0005f, 0.05f);
         return p;
     }
 
@@ -111,6 +126,26 @@ public sealed class HairNodeSettings
         g.HeadRadii = HeadRadii;
         g.Seed = Seed;
         g.PinnedPerStrand = Math.Min(g.PinnedPerStrand, ParticlesPerStrand - 1);
+        g.Validate();
+        return g;
+    }
+
+    /// <summary>The groom grown on a scalp mesh: the same sheet, strand and seed values as the ellipsoid groom, plus the scalp's.</summary>
+    public MeshGroomSettings ToMeshGroom()
+    {
+        ThrowIfInvalid();
+        var g = new MeshGroomSettings
+        {
+            SheetCount = Sheets,
+            StrandsPerSheet = StrandsPerSheet,
+            ParticlesPerStrand = ParticlesPerStrand,
+            StrandLength = StrandLength,
+            PinnedPerStrand = Math.Min(GroomSettings.Reference().PinnedPerStrand, ParticlesPerStrand - 1),
+            RootLift = ScalpRootLift,
+            Drape = ScalpDrape,
+            ScalpMaskThreshold = ScalpMaskThreshold,
+            Seed = Seed,
+        };
         g.Validate();
         return g;
     }

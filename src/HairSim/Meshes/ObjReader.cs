@@ -63,6 +63,28 @@ public static class ObjReader
         float.TryParse(s, NumberStyles.Float, CultureInfo.InvariantCulture, out float v) && float.IsFinite(v)
             ? v : throw new FormatException($"line {line}: '{s}' is not a finite number.");
 
+    /// <summary>
+    /// Writes a mesh as OBJ rounded to <paramref name="decimals"/> places (5 = 10 µm in metres), with vertex colours
+    /// when it has them: a small file to ship (the Godot demo's head). Faces keep the mesh's counter-clockwise winding.
+    /// </summary>
+    public static void Write(TextWriter o, TriangleMesh mesh, int decimals)
+    {
+        if (decimals < 1 || decimals > 9) throw new ArgumentOutOfRangeException(nameof(decimals), decimals, "Decimals must be 1 … 9.");
+        var ci = CultureInfo.InvariantCulture;
+        string f = "0." + new string('#', decimals);
+        // Rounded, then + 0 so that a tiny negative value is written "0", never "-0".
+        string N(float v) => (MathF.Round(v, decimals) + 0f).ToString(f, ci);
+        for (int i = 0; i < mesh.Positions.Length; i++)
+        {
+            var p = mesh.Positions[i];
+            o.Write("v " + N(p.X) + " " + N(p.Y) + " " + N(p.Z));
+            if (mesh.Colors != null) { var c = mesh.Colors[i]; o.Write(" " + N(c.X) + " " + N(c.Y) + " " + N(c.Z)); }
+            o.Write('\n');
+        }
+        for (int t = 0; t < mesh.TriangleCount; t++)
+            o.Write("f " + (mesh.Indices[3 * t] + 1).ToString(ci) + " " + (mesh.Indices[3 * t + 1] + 1).ToString(ci) + " " + (mesh.Indices[3 * t + 2] + 1).ToString(ci) + "\n");
+    }
+
     /// <summary>Writes a mesh as OBJ (with vertex colours when it has them).</summary>
     public static void Write(TextWriter o, TriangleMesh mesh)
     {

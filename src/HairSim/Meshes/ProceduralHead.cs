@@ -14,13 +14,24 @@ public static class ProceduralHead
     public static TriangleMesh Create(int detail = 1)
     {
         if (detail < 1 || detail > 4) throw new ArgumentOutOfRangeException(nameof(detail), detail, "Detail must be 1 … 4.");
-        int rings = 72 * detail, segments = 144 * detail;
-        var cranium = Paint(TriangleMesh.Ellipsoid(Vector3.Zero, CraniumRadii, rings, segments), OnScalp);
+        return Build(72 * detail, 16 * detail);
+    }
+
+    /// <summary>
+    /// The same head with fewer triangles (about 8,800: a 40-ring cranium, 12-ring ears and nose), small enough to ship
+    /// as a file: the Godot demo's head (scenes/head.obj). Its chords stay within 0.1 mm of the ellipsoids.
+    /// </summary>
+    public static TriangleMesh CreateLowPoly() => Build(40, 12);
+
+    // Ellipsoids of `rings` rings and 2 × rings segments; the neck has 1.5 × the ears' rings.
+    private static TriangleMesh Build(int craniumRings, int partRings)
+    {
+        var cranium = Paint(TriangleMesh.Ellipsoid(Vector3.Zero, CraniumRadii, craniumRings, 2 * craniumRings), OnScalp);
         var parts = new List<TriangleMesh> { cranium };
         foreach (float side in new[] { -1f, 1f })   // ears: 8 mm thick, standing slightly off the head
-            parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(side * 0.079f, -0.008f, -0.006f), new Vector3(0.004f, 0.03f, 0.017f), 16 * detail, 32 * detail), _ => false));
-        parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(0, -0.022f, 0.094f), new Vector3(0.011f, 0.022f, 0.016f), 16 * detail, 32 * detail), _ => false));
-        parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(0, -0.14f, -0.012f), new Vector3(0.05f, 0.08f, 0.05f), 24 * detail, 48 * detail), _ => false));
+            parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(side * 0.079f, -0.008f, -0.006f), new Vector3(0.004f, 0.03f, 0.017f), partRings, 2 * partRings), _ => false));
+        parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(0, -0.022f, 0.094f), new Vector3(0.011f, 0.022f, 0.016f), partRings, 2 * partRings), _ => false));
+        parts.Add(Paint(TriangleMesh.Ellipsoid(new Vector3(0, -0.14f, -0.012f), new Vector3(0.05f, 0.08f, 0.05f), partRings * 3 / 2, 3 * partRings), _ => false));
         return TriangleMesh.Combine(parts);
     }
 

@@ -1,0 +1,65 @@
+using System.Globalization;
+using System.Numerics;
+using System.Runtime.InteropServices;
+using System.Security.Cryptography;
+using HairSim;
+using HairSim.Meshes;
+
+namespace HairSheet.Logic;
+
+/// <summary>
+/// Hair grown on a scalp mesh in Godot (HairSystem3D's Scalp Mesh), engine-free: the Godot surfaces in head space
+/// (winding reversed, <see cref="MeshSurfaces"/>), a key that says when that mesh has changed (for the growth key, so
+/// the editor's regrow and undo machinery sees a new scalp as a new input, and to recognise a stored distance field),
+/// and the growth itself through <see cref="MeshScalp.BuildScene"/>.
+/// </summary>
+public static class ScalpGrowth
+{
+    /// <summary>
+    /// The scalp's key: a hash of the surfaces as Godot holds them (vertices, indices, colours) and the mesh's transform
+    /// to the head, rounded to 10 µm and 1e-5 so float noise in the transform (the same scene computed after a head
+    /// moved) does not count as a new scalp.
+    /// </summary>
+    public static string Key(IReadOnlyList<MeshSurfaces.Surface> surfaces, in Matrix4x4 meshToHead)
+    {
+        ArgumentNullException.ThrowIfNull(surfaces);
+        using var hash = IncrementalHash.CreateHash(HashAlgorithmName.SHA256);
+        Span<byte> count = stackalloc byte[12];
+        foreach (var s in surfaces)
+        {
+            BitConverter.TryWriteBytes(count, s.Vertices.Length);
+            BitConverter.TryWriteBytes(count[4..], s.Indices?.Length ?? -1);
+            BitConverter.TryWriteBytes(count[8..], s.Colors?.Length ?? -1);
+            hash.AppendData(count);
+            hash.AppendData(MemoryMarshal.AsBytes(s.Vertices.AsSpan()));
+            if (s.Indices != null) hash.AppendData(MemoryMarshal.AsBytes(s.Indices.AsSpan()));
+            if (s.Colors != null) hash.AppendData(MemoryMarshal.AsBytes(s.Colors.AsSpan()));
+        }
+        var sb = new System.Text.StringBuilder(Convert.ToHexString(hash.GetHashAndReset(), 0, 12).ToLowerInvariant());
+        sb.Append('@');
+        var m = meshToHead;
+        foreach (float v in new[] { m.M11, m.M12, m.M13, m.M21, m.M22, m.M23, m.M31, m.M32, m.M33, m.M41, m.M42, m.M43 })
+            sb.Append((MathF.Round(v, 5) + 0f).ToString("F5", CultureInfo.InvariantCulture)).Append(',');
+        return sb.ToString();
+    }
+
+    /// <summary>The key a stored distance field must carry to be reused for this scalp: the scalp's key and the cell size.</summary>
+    public static string FieldKey(string scalpKey, float cellSize) =>
+        scalpKey + "/cell=" + cellSize.ToString("R", CultureInfo.InvariantCulture);
+
+    /// <summary>The scalp in head space (Godot's clockwise winding reversed; colours kept for the mask).</summary>
+    public static TriangleMesh HeadSpaceMesh(IReadOnlyList<MeshSurfaces.Surface> surfaces, in Matrix4x4 meshToHead) =>
+        MeshSurfaces.ToHeadSpace(surfaces, meshToHead);
+
+    /// <summary>The scalp's distance field at the node's Scalp Cell Size.</summary>
+    public static SignedDistanceField BakeField(TriangleMesh headSpaceMesh, HairNodeSettings settings) =>
+        SignedDistanceField.Bake(headSpaceMesh, settings.ScalpCellSize);
+
+    /// <summary>
+    /// Grows the node's groom on the scalp: its Sheets, Strands Per Sheet, Particles Per Strand, Strand Length and Seed,
+    /// the scalp's mask threshold, root lift and drape. The scene holds the mesh collider of that field (head space).
+    /// Throws ArgumentException with the reason (no triangle on the scalp, too few roots fit) for the node to show.
+    /// </summary>
+    public static HairScene Grow(TriangleMesh headSpaceMesh, SignedDistanceField field, HairNodeSettings settings) =>
+        MeshScalp.BuildScene(headSpaceMesh, field, settings.ToMeshGroom(), settings.ToSimulation());
+}
