@@ -24,8 +24,14 @@ public partial class HairSystem3D : Node3D
     /// <summary>An editor undo or redo entry did nothing because its hair is not the one shown; the message says why.</summary>
     [Signal] public delegate void EditSkippedEventHandler(string message);
 
-    /// <summary>One growth: the scene, its edit history and the groom it was grown from.</summary>
-    private sealed record GrownHair(HairScene Scene, HairEditSession Edits, GroomSettings Groom);
+    /// <summary>
+    /// One growth: the scene, its edit history and the ellipsoid groom it was grown from; or, grown on a scalp mesh, no
+    /// groom and the mesh collider of the scalp's field.
+    /// </summary>
+    private sealed record GrownHair(HairScene Scene, HairEditSession Edits, GroomSettings? Groom, HairSim.Meshes.MeshCollider? ScalpCollider);
+
+    /// <summary>A scalp mesh as read for one growth: its surfaces, their transform into head space and its key.</summary>
+    private sealed record ScalpInput(List<MeshSurfaces.Surface> Surfaces, System.Numerics.Matrix4x4 MeshToHead, string Key);
 
     private readonly HairNodeSettings _settings = new();
     // Each exported value has its own field with an initializer equal to HairNodeSettings' default: Godot's source
@@ -57,6 +63,15 @@ public partial class HairSystem3D : Node3D
     private float _rootWidth = 0.0012f;
     private float _tipWidth = 0.0002f;
     private Hairstyle? _hairstyle;
+    private MeshInstance3D? _scalpMesh;
+    private HairMeshField? _scalpField;
+    private float _scalpMaskThreshold = 0.5f;
+    private float _scalpRootLift = 0.002f;
+    private float _scalpDrape = 1f;
+    private float _scalpCellSize = 0.0025f;
+    // The last field baked for a scalp (its field key): a regrow with other groom values does not bake again.
+    private (string Key, HairSim.Meshes.SignedDistanceField Field)? _bakedScalpField;
+    private HairSim.Meshes.MeshCollider? _scalpCollider;
     private Node3D? _head;
     private bool _useHeadEllipsoid = true;
     private bool _simulateInEditor = true;
@@ -71,7 +86,7 @@ public partial class HairSystem3D : Node3D
     // the hair brings them back with their history (Logic/HairGenerations).
     private readonly HairGenerations<GrownHair> _generations = new(maxKept: 2);
     private FixedStepClock _clock = new(1.0 / 60);
-    private GroomSettings? _groom;
+    private GroomSettings? _groom;   // null for hair grown on a scalp mesh
     private HairMultiMeshRenderer? _renderer;
     private IReadOnlyList<string> _problems = Array.Empty<string>();
     private bool _needsRebuild = true, _collidersDirty = true;
@@ -103,6 +118,35 @@ public partial class HairSystem3D : Node3D
     [Export(PropertyHint.Range, "0.01,2,0.005,suffix:m")] public float StrandLength { get => _strandLength; set { _strandLength = value; _settings.StrandLength = value; Invalidate(); } }
     [Export] public Vector3 HeadRadii { get => _headRadii; set { _headRadii = value; _settings.HeadRadii = value.ToNumerics(); Invalidate(); } }
 
+    // ---- Scalp ----
+    /// <summary>
+    /// Grow the hair on this mesh (a character's head) instead of the Head Radii ellipsoid, and collide with it through
+    /// its distance field. Its surfaces are read in the head's frame each time the hair grows; where hair grows is
+    /// painted in the vertex colours' red channel. Sheets, Strands Per Sheet, Particles Per Strand, Strand Length and
+    /// the Scalp values below shape the groom. Not with a Hairstyle resource (that stores an ellipsoid groom).
+    /// </summary>
+    [ExportGroup("Scalp")]
+    [Export] public MeshInstance3D? ScalpMesh { get => _scalpMesh; set { _scalpMesh = value; Invalidate(); } }
+    /// <summary>A vertex is scalp where its colour's red channel is at least this (0 = the whole mesh; a mesh without colours grows everywhere).</summary>
+    [Export(PropertyHint.Range, "0,1,0.01")] public float ScalpMaskThreshold { get => _scalpMaskThreshold; set { _scalpMaskThreshold = value; _settings.ScalpMaskThreshold = value; Invalidate(); } }
+    /// <summary>Hair starts this far above the scalp; the collision keeps hair half of it off the surface.</summary>
+    [Export(PropertyHint.Range, "0,0.02,0.0001,suffix:m")] public float ScalpRootLift { get => _scalpRootLift; set { _scalpRootLift = value; _settings.ScalpRootLift = value; Invalidate(); } }
+    /// <summary>0: strands stand out along the surface normal; 1: they turn to hang down.</summary>
+    [Export(PropertyHint.Range, "0,1,0.01")] public float ScalpDrape { get => _scalpDrape; set { _scalpDrape = value; _settings.ScalpDrape = value; Invalidate(); } }
+    /// <summary>Cell of the scalp's distance field: about a quarter of the thinnest part the hair must feel (2.5 mm for 1 cm ears; coarser lets hair into them).</summary>
+    [Export(PropertyHint.Range, "0.0005,0.02,0.0005,suffix:m")] public float ScalpCellSize { get => _scalpCellSize; set { _scalpCellSize = value; _settings.ScalpCellSize = value; Invalidate(); } }
+    /// <summary>
+    /// The scalp's stored distance field (Bake Scalp Field writes one next to the scene): used when it was baked from
+    /// this mesh, in this place, at this cell size; otherwise the field is baked whenever the hair grows (about a second
+    /// for a 25k-triangle head), at run time too.
+    /// </summary>
+    [Export] public HairMeshField? ScalpField { get => _scalpField; set => _scalpField = value; }
+    [ExportToolButton("Bake scalp field")]
+    public Callable BakeScalpFieldButton => Callable.From(BakeScalpField);
+    /// <summary>Reads the scalp mesh again (after it was edited or reimported): regrows if it changed, keeps the hair and its edits if not.</summary>
+    [ExportToolButton("Read scalp again")]
+    public Callable RereadScalpButton => Callable.From(() => Rebuild());
+
     // ---- Simulation ----
     /// <summary>The head the roots follow; empty = this node's own transform.</summary>
     [ExportGroup("Simulation")]
@@ -124,7 +168,7 @@ public partial class HairSystem3D : Node3D
     [Export(PropertyHint.Range, "0,2,0.01")] public float KineticFriction { get => _kineticFriction; set { _kineticFriction = value; _settings.KineticFriction = value; Invalidate(); } }
     [Export] public Vector3 Gravity { get => _gravity; set { _gravity = value; _settings.Gravity = value.ToNumerics(); Invalidate(); } }
     [Export(PropertyHint.Range, "10,240,1,suffix:Hz")] public int StepsPerSecond { get => _stepsPerSecond; set { _stepsPerSecond = value; _settings.StepsPerSecond = value; Invalidate(); } }
-    /// <summary>Collide with the groom's head ellipsoid (in addition to child collider nodes).</summary>
+    /// <summary>Collide with the groom's head ellipsoid (in addition to child collider nodes). Hair grown on a Scalp Mesh has no ellipsoid: it collides with the mesh.</summary>
     [Export] public bool UseHeadEllipsoid { get => _useHeadEllipsoid; set { _useHeadEllipsoid = value; _collidersDirty = true; } }
     [Export] public bool SimulateInEditor { get => _simulateInEditor; set => _simulateInEditor = value; }
     /// <summary>
@@ -273,7 +317,22 @@ public partial class HairSystem3D : Node3D
             GD.PushError($"{Name}: " + string.Join(" ", _problems));
             return;
         }
-        string key = GrowthKey.Of(_settings, _hairstyle?.ToRecord(), _hairstyle?.GetInstanceId() ?? 0);
+        ScalpInput? scalp = null;
+        if (_scalpMesh != null)
+        {
+            string? why = _hairstyle != null
+                ? "Scalp Mesh and Hairstyle are both set: a Hairstyle stores a groom grown on the Head Radii ellipsoid. Clear one of them."
+                : null;
+            if (why == null && !TryReadScalp(out scalp, out why)) scalp = null;
+            if (why != null)
+            {
+                _problems = new[] { why };
+                GD.PushError($"{Name}: {why}");
+                if (IsInsideTree()) UpdateConfigurationWarnings();
+                return;
+            }
+        }
+        string key = GrowthKey.Of(_settings, _hairstyle?.ToRecord(), _hairstyle?.GetInstanceId() ?? 0, scalp?.Key);
         bool keepLive = _edits?.HasEntries == true;
         if (!fresh && key == _generations.CurrentKey && _generations.Live is { } live)
         {
@@ -286,11 +345,18 @@ public partial class HairSystem3D : Node3D
             return;
         }
         HairScene scene;
-        GroomSettings groom;
+        GroomSettings? groom;
+        HairSim.Meshes.MeshCollider? scalpCollider = null;
         try
         {
             var simSettings = _settings.ToSimulation();
-            if (_hairstyle != null)
+            if (scalp != null)
+            {
+                groom = null;
+                scene = GrowOnScalp(scalp);
+                scalpCollider = scene.GetComponent<HairSim.Meshes.MeshCollider>();
+            }
+            else if (_hairstyle != null)
             {
                 groom = _hairstyle.ToRecord().ToGroom();
                 scene = _hairstyle.BuildScene(simSettings);
@@ -305,11 +371,13 @@ public partial class HairSystem3D : Node3D
         }
         catch (Exception e) when (e is ArgumentException or System.IO.InvalidDataException)
         {
-            _problems = new[] { e.Message };
-            GD.PushError($"{Name}: {e.Message}");
+            string why = scalp != null ? $"Scalp Mesh: {e.Message}" : e.Message;
+            _problems = new[] { why };
+            GD.PushError($"{Name}: {why}");
+            if (IsInsideTree()) UpdateConfigurationWarnings();
             return;
         }
-        var grown = new GrownHair(scene, new HairEditSession(scene), groom);
+        var grown = new GrownHair(scene, new HairEditSession(scene), groom, scalpCollider);
         _generations.Adopt(key, grown, keepLive);
         Install(grown, restored: false);
     }
@@ -318,6 +386,7 @@ public partial class HairSystem3D : Node3D
     private void Install(GrownHair hair, bool restored)
     {
         _groom = hair.Groom;
+        _scalpCollider = hair.ScalpCollider;
         var scene = hair.Scene;
         scene.World.PlaceHead(HeadPose());
         SyncColliders(scene);
@@ -423,7 +492,8 @@ public partial class HairSystem3D : Node3D
     public void SaveHairstyle(string path)
     {
         Settle();
-        if (_scene == null || _groom == null) throw new InvalidOperationException("Nothing to save: the hair node has no scene.");
+        if (_scene == null) throw new InvalidOperationException("Nothing to save: the hair node has no scene.");
+        if (_groom == null) throw new InvalidOperationException("Hair grown on a Scalp Mesh cannot be saved as a Hairstyle yet: a Hairstyle stores a groom grown on the Head Radii ellipsoid.");
         var res = new Hairstyle();
         res.SetFrom(HairstyleRecord.FromGroom(_groom, HairStyleIO.Save(_scene)));
         string ext = System.IO.Path.GetExtension(path);
@@ -438,6 +508,7 @@ public partial class HairSystem3D : Node3D
     public void LoadHairstyle(string path)
     {
         Settle();
+        if (_scalpMesh != null) throw new InvalidOperationException("Clear Scalp Mesh first: a Hairstyle grows its hair on the Head Radii ellipsoid.");
         if (!ResourceLoader.Exists(path)) throw new System.IO.FileNotFoundException($"No hairstyle at {path}.");
         // Untyped load and `as`: Load<T> casts, so a resource of another type would throw InvalidCastException
         // instead of this message.
@@ -457,6 +528,94 @@ public partial class HairSystem3D : Node3D
         if (Engine.IsEditorHint() && _hairstyle != null) _hairstyle.StyleData = HairStyleIO.Save(_scene);
         Draw();
         EmitSignal(SignalName.StyleChanged);
+    }
+
+    // ---- scalp ----
+
+    /// <summary>
+    /// Bakes the scalp's distance field and stores it as a binary resource beside the scene (a field is about a million
+    /// floats, which a .tscn would hold as text), so the hair grows without baking when the scene opens or runs.
+    /// </summary>
+    public void BakeScalpField()
+    {
+        _problems = _settings.Validate();
+        if (_problems.Count > 0) { GD.PushError($"{Name}: " + string.Join(" ", _problems)); return; }
+        if (_scalpMesh == null) { GD.PushError($"{Name}: set Scalp Mesh first."); return; }
+        if (!TryReadScalp(out var scalp, out string? why) || scalp == null) { GD.PushError($"{Name}: {why}"); return; }
+        try
+        {
+            var mesh = ScalpGrowth.HeadSpaceMesh(scalp.Surfaces, scalp.MeshToHead);
+            var field = ScalpGrowth.BakeField(mesh, _settings);
+            string fieldKey = ScalpGrowth.FieldKey(scalp.Key, _settings.ScalpCellSize);
+            _bakedScalpField = (fieldKey, field);
+            var stored = HairMeshField.From(field, "head", fieldKey);
+            string scenePath = (Owner ?? this).SceneFilePath;
+            if (string.IsNullOrEmpty(scenePath))
+            {
+                GD.PushWarning($"{Name}: the scene has not been saved yet, so the field is kept inside it (large). Save the scene and bake again to store it as a file.");
+                ScalpField = stored;
+                return;
+            }
+            string path = $"{scenePath.GetBaseDir()}/{Name}_scalp_field.res";
+            var err = ResourceSaver.Save(stored, path, ResourceSaver.SaverFlags.ChangePath | ResourceSaver.SaverFlags.Compress);
+            if (err != Error.Ok) { GD.PushError($"{Name}: could not write {path}: {err}."); return; }
+            ScalpField = stored;
+            GD.Print($"{Name}: scalp field {field.Nx}×{field.Ny}×{field.Nz} baked in {field.BakeTime.TotalMilliseconds:F0} ms and saved to {path}.");
+        }
+        catch (ArgumentException e) { GD.PushError($"{Name}: Scalp Mesh: {e.Message}"); }
+    }
+
+    /// <summary>Reads the scalp mesh's surfaces in the head's frame (the one the simulation places the head at).</summary>
+    private bool TryReadScalp(out ScalpInput? scalp, out string? why)
+    {
+        scalp = null;
+        why = null;
+        if (_scalpMesh == null || !IsInstanceValid(_scalpMesh) || _scalpMesh.Mesh is not Mesh mesh)
+        {
+            why = "Scalp Mesh has no mesh: assign a MeshInstance3D with a mesh (an imported .obj, or a mesh inside an imported glTF scene), or clear Scalp Mesh.";
+            return false;
+        }
+        if (!IsInsideTree() || !_scalpMesh.IsInsideTree())
+        {
+            why = "Scalp Mesh must be in the scene tree with the hair node (its place relative to the head is read).";
+            return false;
+        }
+        try
+        {
+            var surfaces = mesh.ReadSurfaces();
+            var toHead = ColliderFollowMath.MeshToFrame(_scalpMesh.GlobalTransform.ToNumericsMatrix(), HeadPose());
+            scalp = new ScalpInput(surfaces, toHead, ScalpGrowth.Key(surfaces, toHead));
+            return true;
+        }
+        catch (ArgumentException e)
+        {
+            why = $"Scalp Mesh: {e.Message}";
+            return false;
+        }
+    }
+
+    /// <summary>Grows the hair on the scalp: its field from Scalp Field when that matches, else from the last bake, else baked now.</summary>
+    private HairScene GrowOnScalp(ScalpInput scalp)
+    {
+        var mesh = ScalpGrowth.HeadSpaceMesh(scalp.Surfaces, scalp.MeshToHead);
+        string fieldKey = ScalpGrowth.FieldKey(scalp.Key, _settings.ScalpCellSize);
+        HairSim.Meshes.SignedDistanceField? field = null;
+        if (_scalpField != null && _scalpField.SourceKey == fieldKey)
+        {
+            try { field = _scalpField.ToField(); }
+            catch (ArgumentException e) { GD.PushWarning($"{Name}: Scalp Field is unusable ({e.Message}): baking the field again."); }
+        }
+        else if (_scalpField != null)
+            GD.PushWarning($"{Name}: Scalp Field was baked from another mesh, place or cell size: baking the field again (press Bake scalp field to store the new one).");
+        if (field == null && _bakedScalpField is { } baked && baked.Key == fieldKey) field = baked.Field;
+        if (field == null)
+        {
+            field = ScalpGrowth.BakeField(mesh, _settings);
+            _bakedScalpField = (fieldKey, field);
+            GD.Print($"{Name}: scalp field {field.Nx}×{field.Ny}×{field.Nz} baked in {field.BakeTime.TotalMilliseconds:F0} ms" +
+                     (_scalpField == null ? "; press Bake scalp field in the editor to store it and skip this when the scene opens." : "."));
+        }
+        return ScalpGrowth.Grow(mesh, field, _settings);
     }
 
     // ---- helpers ----
@@ -530,13 +689,14 @@ public partial class HairSystem3D : Node3D
         foreach (var c in list) scene.AddCollider(c);
         // A mesh collider (HairMeshCollider3D with a baked field) joins as a scene component; the pipeline adds its system.
         // The library takes one per scene: the first visible one with a usable field; any other is told it is ignored.
-        HairSim.Meshes.MeshCollider? mesh = null;
+        // Hair grown on a scalp mesh collides with that mesh's field.
+        HairSim.Meshes.MeshCollider? mesh = _scalpCollider;
         _followingField = null;
         foreach (var child in GetChildren())
         {
             if (child is not HairMeshCollider3D m) continue;
             if (!m.Visible) { m.SetIgnored(null); continue; }
-            if (mesh != null) { m.SetIgnored(OneMeshCollider); continue; }
+            if (mesh != null) { m.SetIgnored(_scalpCollider != null ? ScalpTakesTheMeshCollider : OneMeshCollider); continue; }
             m.SetIgnored(null);
             if (m.ToComponent() is not { } component) continue;
             mesh = component;
@@ -547,6 +707,7 @@ public partial class HairSystem3D : Node3D
     }
 
     private const string OneMeshCollider = "A hair node collides with one mesh: another HairMeshCollider3D before this one is used, this one is ignored.";
+    private const string ScalpTakesTheMeshCollider = "A hair node collides with one mesh: the hair grows on its Scalp Mesh and collides with that, this one is ignored.";
 
     /// <summary>Sets a followed field's world placement from its node or bone now (before the steps; allocates nothing).</summary>
     private void PlaceFollowingField()
