@@ -6,10 +6,13 @@ using HairSheet.Logic;
 namespace HairSheet.Scenes;
 
 /// <summary>
-/// Demo: the reference groom (435 sheets × 40 strands × 16 particles) on an ellipsoid head, an orbit camera
+/// Demo: the reference groom (435 sheets × 40 strands × 16 particles) on a head, an orbit camera
 /// (right-drag or one-finger drag in Orbit mode, wheel to zoom), Cut / Fit / Undo / Reset / Save / Load
 /// buttons, an optional head shake to show the roots following the head, and a readout of frame and hair time.
-/// The head mesh is a unit SphereMesh scaled by GroomSettings.HeadRadii (0.078, 0.1, 0.095): the collider ellipsoid.
+/// demo.tscn: the head mesh is a unit SphereMesh scaled by GroomSettings.HeadRadii (0.078, 0.1, 0.095), the collider
+/// ellipsoid. mesh_head.tscn: the project's procedural head (head.obj, scalp painted in its vertex colours) is the
+/// hair node's Scalp Mesh: the hair grows on it and collides with its distance field (Save and Load say why they
+/// are not available for hair grown on a mesh).
 /// </summary>
 public partial class Demo : Node3D
 {

@@ -68,6 +68,42 @@ public class GodotUidTests
         }
     }
 
+    /// <summary>
+    /// A file's UID as Godot keeps it: in `&lt;file&gt;.uid` for scripts and shaders, in the `uid=` line of the [remap]
+    /// section of `&lt;file&gt;.import` for imported files (a mesh, a texture), which the editor keeps when it reimports.
+    /// </summary>
+    private static string UidOf(string file)
+    {
+        if (File.Exists(file + ".uid")) return File.ReadAllText(file + ".uid").Trim();
+        Assert.True(File.Exists(file + ".import"), $"{file} has neither a .uid nor a .import file");
+        var m = Regex.Match(File.ReadAllText(file + ".import"), @"^\[remap\][^\[]*?^uid=""(?<uid>[^""]+)""", RegexOptions.Multiline | RegexOptions.Singleline);
+        Assert.True(m.Success, $"{file}.import has no uid in its [remap] section");
+        return m.Groups["uid"].Value;
+    }
+
+    [Fact]
+    public void EveryShippedImportedFileKeepsItsUidInItsImportFile()
+    {
+        string root = Root();
+        var seen = new Dictionary<ulong, string>();
+        foreach (var file in GodotFiles(root, "*.cs").Concat(GodotFiles(root, "*.gdshader")).Concat(GodotFiles(root, "*.obj")))
+        {
+            Assert.True(TryParseUid(UidOf(file), out ulong id), $"{Path.GetRelativePath(root, file)}: bad uid");
+            Assert.False(seen.TryGetValue(id, out var other), $"{Path.GetRelativePath(root, file)} and {other} share a uid");
+            seen[id] = Path.GetRelativePath(root, file);
+        }
+        var obj = GodotFiles(root, "*.obj").ToList();
+        Assert.NotEmpty(obj);
+        foreach (var file in obj)
+        {
+            // Imported as a Mesh (ResourceImporterOBJ, "wavefront_obj"), not as a scene, so a MeshInstance3D can use it.
+            string import = File.ReadAllText(file + ".import");
+            Assert.Contains("importer=\"wavefront_obj\"", import);
+            Assert.Contains("type=\"Mesh\"", import);
+            Assert.Contains($"source_file=\"res://{Path.GetRelativePath(root, file).Replace('\\', '/')}\"", import);
+        }
+    }
+
     [Fact]
     public void ScenesReferToTheirResourcesByUid()
     {
@@ -90,7 +126,7 @@ public class GodotUidTests
                 Assert.True(m.Success, $"{rel}: {line} has no uid before its path (Godot writes type, uid, path, id)");
                 string target = Path.Combine(root, m.Groups["path"].Value);
                 Assert.True(File.Exists(target), $"{rel}: {m.Groups["path"].Value} does not exist");
-                Assert.Equal(File.ReadAllText(target + ".uid").Trim(), m.Groups["uid"].Value);
+                Assert.Equal(UidOf(target), m.Groups["uid"].Value);
             }
             Assert.True(ext > 0, $"{rel} has no ext_resource lines: is the pattern still right?");
         }
