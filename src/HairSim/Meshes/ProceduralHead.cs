@@ -18,8 +18,8 @@ public static class ProceduralHead
     }
 
     /// <summary>
-    /// The same head with fewer triangles (about 8,800: a 40-ring cranium, 12-ring ears and nose), small enough to ship
-    /// as a file: the Godot demo's head (scenes/head.obj). Its chords stay within 0.1 mm of the ellipsoids.
+    /// The same head with fewer triangles (9,048: a 40-ring cranium, 12-ring ears and nose), small enough to ship as a
+    /// file: the Godot demo's head (scenes/head.obj). The cranium's chords stay within 0.08 mm of its ellipsoid.
     /// </summary>
     public static TriangleMesh CreateLowPoly() => Build(40, 12);
 
