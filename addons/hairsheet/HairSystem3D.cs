@@ -538,8 +538,8 @@ public partial class HairSystem3D : Node3D
     /// </summary>
     public void BakeScalpField()
     {
-        _problems = _settings.Validate();
-        if (_problems.Count > 0) { GD.PushError($"{Name}: " + string.Join(" ", _problems)); return; }
+        var problems = _settings.Validate();
+        if (problems.Count > 0) { GD.PushError($"{Name}: " + string.Join(" ", problems)); return; }
         if (_scalpMesh == null) { GD.PushError($"{Name}: set Scalp Mesh first."); return; }
         if (!TryReadScalp(out var scalp, out string? why) || scalp == null) { GD.PushError($"{Name}: {why}"); return; }
         try
