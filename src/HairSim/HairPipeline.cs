@@ -20,6 +20,8 @@ public sealed class HairPipeline
     private int _reachStamp;
     private readonly Action<int> _substepJob, _frameEndJob;
     private int _jobCount;
+    private readonly NonFiniteContainment _containment;
+    private readonly FrameReport _report = new();
 
     /// <summary>
     /// Particles per substep job: ~8192 particles × the ≈ 44 bytes a substep touches (positions, velocities, masses,
@@ -42,6 +44,7 @@ public sealed class HairPipeline
         SystemNames = Array.ConvertAll(_all, s => s.Name);
         _scale = GroomScale.Of(scene.World);
         _reachStamp = scene.World.EditStamp;
+        _containment = new NonFiniteContainment(scene.World, _all);
     }
 
     public IReadOnlyList<IHairSystem> Systems => _all;
@@ -63,6 +66,9 @@ public sealed class HairPipeline
     public (int Stepped, int HandedBack) LastFrameChunks => _chunkFrame ? _chunks!.Counts : default;
     /// <summary>The context of the last frame (teleport flag, substep length, …).</summary>
     public FrameContext LastFrame => _ctx;
+
+    /// <summary>The strands the last frame reset because they held a non-finite value (see <see cref="FrameReport"/>).</summary>
+    public FrameReport LastFrameReport => _report;
 
     /// <summary>The groom's size the scale-free settings are measured against (updated after each edit).</summary>
     public GroomScale Scale => _scale;
@@ -93,7 +99,7 @@ public sealed class HairPipeline
         if (!teleported)
             foreach (var system in _frameStart)
                 if (system is IFrameSplitter splitter) parts = Math.Max(parts, splitter.PartsOf(_scene, dt, _scale));
-        if (parts <= 1) { StepPart(dt, headTarget, headMove, delta, teleported, requested.Substeps); return; }
+        if (parts <= 1) { StepPart(dt, headTarget, headMove, delta, teleported, requested.Substeps); _containment.Collect(_report); return; }
         var start = world.Head;
         int substeps = Math.Max(1, (requested.Substeps + parts - 1) / parts);
         for (int i = 1; i <= parts; i++)
@@ -101,6 +107,7 @@ public sealed class HairPipeline
             var target = i == parts ? headTarget : RigidTransform.Interpolate(start, headTarget, i / (float)parts);
             StepPart(dt / parts, target, (target.Position - world.Head.Position).Length(), RigidTransform.Delta(world.Head, target), false, substeps);
         }
+        _containment.Collect(_report);
     }
 
     private void StepPart(float dt, RigidTransform headTarget, float headMove, RigidTransform delta, bool teleported, int substeps)
@@ -145,8 +152,9 @@ public sealed class HairPipeline
             // Small blocks (~ParticlesPerJob) keep a block's data in L2 across all its substeps and systems.
             long blocks = (world.ParticleCount + ParticlesPerJob - 1) / ParticlesPerJob;
             _jobCount = (int)Math.Max(1, Math.Min(world.StrandCount, Math.Max(blocks, _dispatcher.ThreadCount == 1 ? 1 : _dispatcher.ThreadCount * 4)));
-            _dispatcher.Run(_jobCount, _substepJob);
+            _dispatcher.Run(_jobCount, _substepJob); // each job also contains non-finite values in its strands
         }
+        else _containment.Scan(world, headTarget, 0, world.StrandCount);
         world.Head = headTarget;
         if (_frameEnd.Length > 0)
         {
@@ -167,11 +175,13 @@ public sealed class HairPipeline
             begin = (int)Math.Min(n, L * (groups * job / _jobCount));
             end = (int)Math.Min(n, L * (groups * (job + 1) / _jobCount));
             _chunks!.Run(_scene, _ctx, begin, end);
-            return;
         }
-        for (int s = 0; s < _ctx.Substeps; s++)
-            for (int k = 0; k < _substep.Length; k++)
-                _substep[k].Run(_scene, _ctx, s, begin, end);
+        else
+            for (int s = 0; s < _ctx.Substeps; s++)
+                for (int k = 0; k < _substep.Length; k++)
+                    _substep[k].Run(_scene, _ctx, s, begin, end);
+        // While the job's strands are still in this core's cache: a strand left non-finite goes back to its rest pose.
+        _containment.Scan(_scene.World, _ctx.HeadEnd, begin, end);
     }
 
     private void RunFrameEndJob(int job)

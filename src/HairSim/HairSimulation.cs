@@ -10,6 +10,7 @@ public sealed class HairSimulation
     private readonly IThreadDispatcher? _dispatcher;
     private HairPipeline? _pipeline;
     private int _builtRevision = -1;
+    private HairPipeline? _stepped;
 
     public HairSimulation(HairScene scene, PipelineBuilder? builder = null, IThreadDispatcher? dispatcher = null)
     {
@@ -22,6 +23,15 @@ public sealed class HairSimulation
     public HairWorld World => Scene.World;
     public double Time { get; private set; }
     public long Frame { get; private set; }
+
+    /// <summary>
+    /// What the last frame had to contain: strands that held a NaN or ±∞ at its end (written by a custom system or a bug)
+    /// and were put back at their rest pose on the head; empty before the first frame. Reused every frame.
+    /// </summary>
+    public FrameReport LastFrameReport => _stepped?.LastFrameReport ?? FrameReport.Empty;
+
+    /// <summary>Strands reset since this simulation was made (the sum of every frame's <see cref="FrameReport.StrandsReset"/>).</summary>
+    public long StrandsResetTotal { get; private set; }
 
     /// <summary>The current pipeline (rebuilt first if the scene changed).</summary>
     public HairPipeline Pipeline
@@ -43,7 +53,10 @@ public sealed class HairSimulation
     /// <summary>One frame while the head moves to headTarget (pins and colliders follow it across the substeps).</summary>
     public void Step(float dt, RigidTransform headTarget)
     {
-        Pipeline.Step(dt, headTarget);
+        var pipeline = Pipeline;
+        pipeline.Step(dt, headTarget);
+        _stepped = pipeline;
+        StrandsResetTotal += pipeline.LastFrameReport.StrandsReset;
         Time += dt;
         Frame++;
     }

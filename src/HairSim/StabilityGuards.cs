@@ -38,20 +38,26 @@ public static class StabilityGuards
         if (!requested.Guards) return;
         if (requested.Mode == ShapeMatchMode.Muller && requested.Alpha > 1f) effective.Alpha = 1f;
         double substeps = baseSubsteps > 0 ? baseSubsteps : requested.Substeps;
-        if (requested.MaxSubstep > 0f) substeps = Math.Max(substeps, Math.Ceiling(dt / requested.MaxSubstep - 1e-4));
+        if (requested.MaxSubstep > 0f) substeps = Raise(substeps, Math.Ceiling(dt / requested.MaxSubstep - 1e-4));
         double g = requested.Gravity.Length();
         if (requested.MaxFallPerSubstep > 0f && segment > 0f && g > 0)
         {
             double longest = Math.Sqrt(requested.MaxFallPerSubstep * segment / g);
-            substeps = Math.Max(substeps, Math.Ceiling(dt / longest - 1e-4));
+            substeps = Raise(substeps, Math.Ceiling(dt / longest - 1e-4));
         }
         if (requested.MaxHeadTravel > 0f && segment > 0f && !teleported)
         {
             double travel = headTranslation + (double)headAngle * reach;
-            substeps = Math.Max(substeps, Math.Ceiling(travel / (requested.MaxHeadTravel * segment)));
+            substeps = Raise(substeps, Math.Ceiling(travel / (requested.MaxHeadTravel * segment)));
         }
-        effective.Substeps = (int)Math.Min(MaxSubsteps, substeps);
+        effective.Substeps = (int)Math.Clamp(substeps, 1, MaxSubsteps);
     }
+
+    /// <summary>
+    /// The larger of two substep counts, a NaN limit ignored: a figure that overflowed (0·∞ from a groom or a head move
+    /// at the edge of float's range) must not turn into 0 substeps, a frozen scene.
+    /// </summary>
+    private static double Raise(double substeps, double limit) => double.IsNaN(limit) ? substeps : Math.Max(substeps, limit);
 
     /// <summary>The mean rest length of the live segments of every strand (0 for a world without any).</summary>
     public static float MeanSegment(HairWorld world)

@@ -7,7 +7,7 @@ namespace HairSim;
 /// <see cref="SimulationSettings.KineticFriction"/> set, Coulomb friction in position-based form (Macklin et al.
 /// 2014, "Unified particle physics for real-time applications", §6.1) also holds the particle along the surface.
 /// </summary>
-public sealed class CollideSystem : IHairSystem
+public sealed class CollideSystem : IHairSystem, IStrandResetListener
 {
     public const string SystemName = "Collide";
     public string Name => SystemName;
@@ -44,6 +44,9 @@ public sealed class CollideSystem : IHairSystem
     }
 
     private readonly FrictionStarts _starts = new();
+
+    /// <summary>A strand put back at its rest pose: the start positions stored for it are stale.</summary>
+    void IStrandResetListener.StrandReset(HairWorld world, int strand) => _starts.Forget(world, strand, strand + 1);
 
     /// <summary>
     /// As <see cref="Run"/>, with friction. Per contact: the particle's displacement over the substep, from its position

@@ -1,0 +1,7 @@
+namespace HairSim.Fast;
+
+public sealed partial class FastCollideSystem : IStrandResetListener
+{
+    /// <summary>A strand put back at its rest pose by the pipeline: the friction start positions stored for it are stale.</summary>
+    void IStrandResetListener.StrandReset(HairWorld world, int strand) => _starts.Forget(world, strand, strand + 1);
+}
