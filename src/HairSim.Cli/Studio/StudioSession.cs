@@ -171,7 +171,8 @@ public sealed class StudioSession : IDisposable
                 // The page draws colliders in head space; one fixed in the world is drawn where the head now sees it.
                 var c = collider;
                 var center = c.InWorld ? w.Head.InverseTransformPoint(c.Center) : c.Center;
-                var end = c.InWorld ? w.Head.InverseTransformPoint(c.End) : c.End;
+                // A plane's end is its normal: a direction, not a point.
+                var end = !c.InWorld ? c.End : c.Kind == ColliderKind.Plane ? w.Head.InverseTransformDirection(c.End) : w.Head.InverseTransformPoint(c.End);
                 var rotation = c.InWorld ? Quaternion.Conjugate(w.Head.Rotation) * c.Rotation : c.Rotation;
                 colliders.Add(new ColliderState(c.Kind.ToString(), Arr(center), Arr(end), Arr(c.Radii), [rotation.X, rotation.Y, rotation.Z, rotation.W]));
             }

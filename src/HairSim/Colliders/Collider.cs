@@ -2,7 +2,14 @@ using System.Numerics;
 
 namespace HairSim;
 
-public enum ColliderKind { Ellipsoid, Sphere, Capsule }
+public enum ColliderKind
+{
+    Ellipsoid,
+    Sphere,
+    Capsule,
+    /// <summary>A plane through <see cref="Collider.Center"/> with unit normal <see cref="Collider.Normal"/>: the half-space below it is solid (a floor, a table top, a wall).</summary>
+    Plane,
+}
 
 /// <summary>
 /// A collider in head space (it moves with the head), or, made with <see cref="InWorldSpace"/>, fixed in the world (a
@@ -14,7 +21,7 @@ public readonly struct Collider
     public readonly ColliderKind Kind;
     /// <summary>Ellipsoid/sphere centre, or capsule end A.</summary>
     public readonly Vector3 Center;
-    /// <summary>Capsule end B (unused otherwise).</summary>
+    /// <summary>Capsule end B; a plane's unit normal (see <see cref="Normal"/>); unused otherwise.</summary>
     public readonly Vector3 End;
     /// <summary>Ellipsoid semi-axes; for sphere and capsule X holds the radius.</summary>
     public readonly Vector3 Radii;
@@ -32,6 +39,9 @@ public readonly struct Collider
     public Collider InWorldSpace() => new(Kind, Center, End, Radii, Rotation, inWorld: true);
 
     public float Radius => Radii.X;
+
+    /// <summary>A plane's unit normal, pointing out of the solid half-space (zero for the other kinds).</summary>
+    public Vector3 Normal => Kind == ColliderKind.Plane ? End : Vector3.Zero;
 
     public static Collider Ellipsoid(Vector3 center, Vector3 radii) => Ellipsoid(center, radii, Quaternion.Identity);
 
@@ -61,6 +71,21 @@ public readonly struct Collider
         return new Collider(ColliderKind.Capsule, a, b, new Vector3(radius), Quaternion.Identity);
     }
 
+    /// <summary>
+    /// A plane through <paramref name="point"/> whose solid side is below <paramref name="normal"/> (a floor: normal +Y).
+    /// The normal is normalised; a zero, tiny (&lt; 1e-6) or non-finite one is refused. On the head by default, like every
+    /// collider; <see cref="InWorldSpace"/> fixes it in the world.
+    /// </summary>
+    public static Collider Plane(Vector3 point, Vector3 normal)
+    {
+        FiniteVec(point, nameof(point)); FiniteVec(normal, nameof(normal));
+        float len = normal.Length();
+        if (!(len >= 1e-6f) || !float.IsFinite(len))
+            throw new ArgumentException($"A plane's normal must be a non-zero direction (length ≥ 1e-6), got {normal}.", nameof(normal));
+        // A normal that is already unit within float rounding is kept bit for bit (a hairstyle file's round trip is exact).
+        return new Collider(ColliderKind.Plane, point, MathF.Abs(len - 1f) <= 1e-6f ? normal : normal / len, Vector3.Zero, Quaternion.Identity);
+    }
+
     private static void FiniteVec(Vector3 v, string name)
     {
         if (!float.IsFinite(v.X) || !float.IsFinite(v.Y) || !float.IsFinite(v.Z))
@@ -69,7 +94,8 @@ public readonly struct Collider
 
     /// <summary>This collider placed by a head pose (a world-space collider is already placed).</summary>
     public Collider ToWorld(in RigidTransform head) => InWorld ? this :
-        new(Kind, head.TransformPoint(Center), head.TransformPoint(End), Radii, Quaternion.Normalize(head.Rotation * Rotation));
+        new(Kind, head.TransformPoint(Center), Kind == ColliderKind.Plane ? head.TransformDirection(End) : head.TransformPoint(End), Radii,
+            Quaternion.Normalize(head.Rotation * Rotation));
 
     /// <summary>
     /// If p is inside, the surface point it is pushed to and the outward unit normal there; otherwise false.
@@ -102,6 +128,17 @@ public readonly struct Collider
             }
             case ColliderKind.Sphere:
                 return PushOutOfSphere(p, Center, Radius, Vector3.UnitY, out surface, out normal, out depth);
+            case ColliderKind.Plane:
+            {
+                // Signed height above the plane; below it, straight up to the plane.
+                double nx = End.X, ny = End.Y, nz = End.Z;
+                double d = (p.X - (double)Center.X) * nx + (p.Y - (double)Center.Y) * ny + (p.Z - (double)Center.Z) * nz;
+                if (!(d < 0)) { surface = p; normal = default; depth = 0; return false; }
+                surface = new Vector3((float)(p.X - d * nx), (float)(p.Y - d * ny), (float)(p.Z - d * nz));
+                normal = End;
+                depth = (float)-d;
+                return true;
+            }
             default:
             {
                 var ab = End - Center;

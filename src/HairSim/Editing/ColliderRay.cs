@@ -20,6 +20,16 @@ public static class ColliderRay
             }
             case ColliderKind.Sphere:
                 return UnitSphere((o - c.Center) / c.Radius, d / c.Radius, out t);
+            case ColliderKind.Plane:
+            {
+                // Inside (below) counts as a hit at 0, as for the other shapes.
+                float h = Vector3.Dot(o - c.Center, c.Normal), dn = Vector3.Dot(d, c.Normal);
+                t = 0f;
+                if (h <= 0f) return true;
+                if (!(dn < 0f)) return false;
+                t = -h / dn;
+                return true;
+            }
             default:
                 return Capsule(c.Center, c.End, c.Radius, o, d, out t);
         }

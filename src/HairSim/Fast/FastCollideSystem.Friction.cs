@@ -65,6 +65,11 @@ public sealed partial class FastCollideSystem
                 var k = new EllipsoidKernel(col, slide, friction);
                 ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide, sx, sy, sz);
             }
+            else if (col.Kind == ColliderKind.Plane)
+            {
+                var k = new PlaneKernel(col, slide, friction);
+                ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide, sx, sy, sz);
+            }
             else
             {
                 var k = new CapsuleKernel(col, slide, friction);

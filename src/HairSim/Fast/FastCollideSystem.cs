@@ -40,6 +40,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
     // This frame's kernel of each (substep, collider), built once for all chunks; the slot of the other kind is unused.
     private EllipsoidKernel[] _chunkEllipsoids = [];
     private CapsuleKernel[] _chunkCapsules = [];
+    private PlaneKernel[] _chunkPlanes = [];
 
     /// <summary>A chunk's frictionless frame leaves the stored friction starts of its strands stale.</summary>
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) => _starts.Forget(w, s0, s0 + StrandChunk.Lanes);
@@ -49,7 +50,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
         // Friction needs each particle's start-of-substep position, which a chunk has no rows for: step system by system.
         if (ctx.Settings.StaticFriction > 0f || ctx.Settings.KineticFriction > 0f) return false;
         int n = ctx.Substeps * ctx.ColliderCount;
-        if (_chunkEllipsoids.Length < n) { _chunkEllipsoids = new EllipsoidKernel[n]; _chunkCapsules = new CapsuleKernel[n]; }
+        if (_chunkEllipsoids.Length < n) { _chunkEllipsoids = new EllipsoidKernel[n]; _chunkCapsules = new CapsuleKernel[n]; _chunkPlanes = new PlaneKernel[n]; }
         float slide = ctx.Settings.ContactSlide;
         var friction = default(FrictionLanes); // off (friction frames do not run on chunks)
         for (int s = 0; s < ctx.Substeps; s++)
@@ -59,6 +60,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
             {
                 int i = s * colliders.Length + c;
                 if (colliders[c].Kind == ColliderKind.Ellipsoid) _chunkEllipsoids[i] = new EllipsoidKernel(colliders[c], slide, friction);
+                else if (colliders[c].Kind == ColliderKind.Plane) _chunkPlanes[i] = new PlaneKernel(colliders[c], slide, friction);
                 else _chunkCapsules[i] = new CapsuleKernel(colliders[c], slide, friction);
             }
         }
@@ -72,6 +74,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
         {
             int i = substep * colliders.Length + c;
             if (colliders[c].Kind == ColliderKind.Ellipsoid) chunk.ForEachCell(ref _chunkEllipsoids[i]);
+            else if (colliders[c].Kind == ColliderKind.Plane) chunk.ForEachCell(ref _chunkPlanes[i]);
             else chunk.ForEachCell(ref _chunkCapsules[i]);
         }
         return true;
@@ -89,6 +92,11 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
             if (col.Kind == ColliderKind.Ellipsoid)
             {
                 var k = new EllipsoidKernel(col, slide, friction);
+                ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
+            }
+            else if (col.Kind == ColliderKind.Plane)
+            {
+                var k = new PlaneKernel(col, slide, friction);
                 ParticleRuns.ForEachLiveWide(w, begin, end, ref k, _wide);
             }
             else

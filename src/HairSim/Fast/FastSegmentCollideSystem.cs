@@ -64,7 +64,7 @@ public sealed class FastSegmentCollideSystem : IHairSystem, IStrandChunkSystem
         if (w0 + w1 == 0f) return;
         foreach (ref readonly var c in colliders)
         {
-            if (c.Kind == ColliderKind.Ellipsoid || !(c.Radius < restLength)) continue;
+            if (c.Kind is not (ColliderKind.Sphere or ColliderKind.Capsule) || !(c.Radius < restLength)) continue;
             float ax = c.Center.X, ay = c.Center.Y, az = c.Center.Z;
             float ux = p1x - p0x, uy = p1y - p0y, uz = p1z - p0z;
             float vx = c.End.X - ax, vy = c.End.Y - ay, vz = c.End.Z - az;

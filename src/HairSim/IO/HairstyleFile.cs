@@ -13,12 +13,15 @@ namespace HairSim.IO;
 /// </code>
 /// Loading checks size caps, the checksum, the version and every count against the bytes that remain before
 /// allocating, and every value's range; anything wrong is an <see cref="InvalidDataException"/> with a clear message.
+/// A collider is its kind word (kind | 0x100 when fixed in the world), centre, end, radii and rotation; a plane (kind 3,
+/// version 3 on) keeps its point in the centre and its unit normal in the end.
 /// Version 1 files (before the bend models) load with <see cref="BendModel.SourceTriples"/>, the model they were made with,
 /// and their damping, speed limit and teleport distance turned from SI units into this build's groom-relative ones.
 /// </summary>
 public static class HairstyleFile
 {
-    public const int Version = 2;
+    /// <summary>3: plane colliders (kind 3); the layout is version 2's, so versions 1 and 2 still load.</summary>
+    public const int Version = 3;
     /// <summary>The oldest version this build still reads.</summary>
     public const int OldestVersion = 1;
     private const int SettingsBytes = 84;
@@ -168,6 +171,7 @@ public static class HairstyleFile
                 (int)ColliderKind.Ellipsoid => Collider.Ellipsoid(center, radii, rot),
                 (int)ColliderKind.Sphere => Collider.Sphere(center, radii.X),
                 (int)ColliderKind.Capsule => Collider.Capsule(center, end, radii.X),
+                (int)ColliderKind.Plane when version >= 3 => Collider.Plane(center, end),
                 _ => throw new InvalidDataException($"Collider {c} has unknown kind {word}."),
             };
             if ((word & WorldColliderFlag) != 0) colliders[c] = colliders[c].InWorldSpace();

@@ -44,7 +44,7 @@ public sealed class SegmentCollideSystem : IHairSystem
                 double rest = w.RestLength[i1];
                 foreach (var c in colliders)
                 {
-                    if (c.Kind == ColliderKind.Ellipsoid || !(c.Radius < rest)) continue;
+                    if (c.Kind is not (ColliderKind.Sphere or ColliderKind.Capsule) || !(c.Radius < rest)) continue; // planes and heads: the particle test
                     if (!Contact(w.PosX[i0], w.PosY[i0], w.PosZ[i0], w.PosX[i1], w.PosY[i1], w.PosZ[i1], c, w0, w1,
                             out double nx, out double ny, out double nz, out double push0, out double push1)) continue;
                     Push(w, i0, nx, ny, nz, push0);

@@ -31,6 +31,7 @@ public class FastAllocationTests
     [InlineData("rest")]
     [InlineData("rest-cut")]
     [InlineData("rest-odd-lengths")]
+    [InlineData("rest-planes")]
     [InlineData("rest", false, "volume")]
     [InlineData("rest-cut", false, "volume")]
     [InlineData("rest", false, "volume in parts")]

@@ -12,8 +12,15 @@ internal static class FastPathScenes
         "literal", "length-none", "pbd", "global-shape", "speed-limit", "one-pin", "no-colliders",
         "cut-mixed",
         // The default bend model (BendModel.RestShape), on the draped groom, cut, styled, odd lengths and other length modes.
-        "rest", "rest-cut", "rest-cut-mixed", "rest-short8", "rest-p12", "rest-p3", "rest-p17", "rest-p40", "rest-p64", "rest-bent", "rest-odd-lengths", "rest-soft", "rest-speed-limit", "rest-all-colliders", "limp",
+        "rest", "rest-cut", "rest-cut-mixed", "rest-short8", "rest-p12", "rest-p3", "rest-p17", "rest-p40", "rest-p64", "rest-bent", "rest-odd-lengths", "rest-soft", "rest-speed-limit", "rest-all-colliders", "rest-planes", "limp",
     ];
+
+    /// <summary>
+    /// Not in <see cref="Names"/>: "planes", the source's scheme with its strand tips sliding on a tilted plane, where
+    /// float and double part by a contact response within a frame (tips land on the plane every substep); it is
+    /// compared by long-run statistics instead. "rest-planes" (the default model) is in the frame-by-frame lists.
+    /// </summary>
+    public static readonly string[] Others = ["planes"];
 
     /// <summary>Scenes of the default bend model (the others run the source's triple shape matching).</summary>
     public static bool IsRestShape(string name) => name.StartsWith("rest", StringComparison.Ordinal);
@@ -85,6 +92,11 @@ internal static class FastPathScenes
                 break;
             case "no-colliders":
                 scene.ClearColliders();
+                break;
+            case "planes":
+                // A tilted plane on the head that cuts through the hanging hair, and a floor fixed in the world under it.
+                scene.AddCollider(Collider.Plane(new Vector3(0.02f, -0.2f, 0f), new Vector3(0.3f, 1f, 0.2f)));
+                scene.AddCollider(Collider.Plane(new Vector3(0f, -0.23f, 0f), Vector3.UnitY).InWorldSpace());
                 break;
         }
         return scene;

@@ -124,6 +124,7 @@ public class FastVsReferenceTests(ITestOutputHelper output)
     [InlineData("bent")]
     [InlineData("all-colliders")]
     [InlineData("pbd")]
+    [InlineData("planes")]
     public void LongRunStatisticsMatchReference(string scene)
     {
         var reference = FastPathScenes.Build(scene, SolverPath.Reference);

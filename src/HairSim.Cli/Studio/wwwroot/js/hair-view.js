@@ -252,6 +252,12 @@ export class HairView {
         mesh = new THREE.Mesh(new THREE.CapsuleGeometry(c.radii[0], a.distanceTo(b), 8, 24), skin);
         mesh.position.copy(a).add(b).multiplyScalar(0.5);
         mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), b.clone().sub(a).normalize());
+      } else if (c.kind === 'Plane') {
+        // A 1 m square of the plane (its end is the normal), seen from both sides.
+        const floor = new THREE.MeshStandardMaterial({ color: 0x8f9aa6, roughness: 0.9, transparent: true, opacity: 0.5, side: THREE.DoubleSide });
+        mesh = new THREE.Mesh(new THREE.PlaneGeometry(1, 1), floor);
+        mesh.position.set(...c.center);
+        mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), new THREE.Vector3(...c.end).normalize());
       } else {
         mesh = new THREE.Mesh(new THREE.SphereGeometry(1, 48, 32), skin);
         mesh.position.set(...c.center);
