@@ -78,10 +78,7 @@ public sealed class HairPipeline
     {
         if (!float.IsFinite(dt) || dt <= 0f || dt > 1f)
             throw new ArgumentOutOfRangeException(nameof(dt), dt, "Frame time must be in (0, 1] seconds.");
-        var p = headTarget.Position; var q = headTarget.Rotation;
-        if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z) || !float.IsFinite(q.X) || !float.IsFinite(q.Y)
-            || !float.IsFinite(q.Z) || !float.IsFinite(q.W) || q.LengthSquared() < 1e-12f)
-            throw new ArgumentException($"The head pose must be finite with a non-zero rotation, got {p}, {q}.", nameof(headTarget));
+        HairWorld.CheckHead(headTarget, nameof(headTarget));
         var world = _scene.World;
         var ctx = _ctx;
         var delta = RigidTransform.Delta(world.Head, headTarget);
@@ -91,6 +88,7 @@ public sealed class HairPipeline
         // and rest data after every edit: before anything moves, so a refused frame leaves the world as it was.
         requested.Validate();
         if (world.EditStamp != _reachStamp) { world.ValidateRestData(); _scale = GroomScale.Of(world); _reachStamp = world.EditStamp; } // only after edits
+        world.EnsureFreeStrands(); // before the jobs, which only read it
         bool teleported = headMove > requested.TeleportDistance * _scale.Reach || delta.Angle > requested.TeleportAngle;
         // A system that couples strands once per frame may ask for shorter frames (hair volume: a fixed share of the
         // hair's natural time), so it behaves the same at 30 and 240 Hz and on a doll or a giant: the frame is then

@@ -16,6 +16,12 @@ public sealed class HairWorld
     /// <summary>Upper bound on particles in one world (≈ 1.3 GB of particle data); larger requests are refused before allocating.</summary>
     public const int MaxParticles = 16 * 1024 * 1024;
     public const int MaxParticlesPerStrand = 4096;
+    /// <summary>
+    /// Largest coordinate (m), velocity component (m/s) or size the public setters accept: a million kilometres, where
+    /// float's spacing is already over 100 m, so nothing larger is hair (it is uninitialised memory or a unit mix-up), and
+    /// every squared distance the solver forms stays finite in float.
+    /// </summary>
+    public const float MaxCoordinate = 1e9f;
     public const int MaxStrandsPerSheet = 4096;
 
     // ---- particles ----
@@ -136,9 +142,18 @@ public sealed class HairWorld
     /// <summary>Sets a particle's position; a non-finite one is refused and nothing changes.</summary>
     public void SetPosition(int i, Vector3 p)
     {
-        if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z))
-            throw new ArgumentException($"Position of particle {i} must be finite, got {p}.", nameof(p));
+        CheckParticle(i);
+        if (!InRange(p)) throw new ArgumentException($"Position of particle {i} must be finite and within ±{MaxCoordinate:G} m, got {p}.", nameof(p));
         PutPosition(i, p);
+    }
+
+    /// <summary>Finite, each component within ±<see cref="MaxCoordinate"/>.</summary>
+    public static bool InRange(Vector3 v) =>
+        MathF.Abs(v.X) <= MaxCoordinate && MathF.Abs(v.Y) <= MaxCoordinate && MathF.Abs(v.Z) <= MaxCoordinate; // false for NaN
+
+    private void CheckParticle(int i)
+    {
+        if ((uint)i >= (uint)ParticleCount) throw new ArgumentOutOfRangeException(nameof(i), i, $"Particle index must be in 0 … {ParticleCount - 1}.");
     }
 
     /// <summary>The systems' own write (their results are checked by the step, not per particle).</summary>
@@ -147,8 +162,8 @@ public sealed class HairWorld
     /// <summary>Sets a particle's velocity; a non-finite one is refused and nothing changes.</summary>
     public void SetVelocity(int i, Vector3 v)
     {
-        if (!float.IsFinite(v.X) || !float.IsFinite(v.Y) || !float.IsFinite(v.Z))
-            throw new ArgumentException($"Velocity of particle {i} must be finite, got {v}.", nameof(v));
+        CheckParticle(i);
+        if (!InRange(v)) throw new ArgumentException($"Velocity of particle {i} must be finite and within ±{MaxCoordinate:G} m/s, got {v}.", nameof(v));
         PutVelocity(i, v);
     }
 
@@ -169,7 +184,9 @@ public sealed class HairWorld
     /// <summary>
     /// Sets a strand's rest pose (head space), rest lengths and rest shape from points, pins its first
     /// <paramref name="pinned"/> particles and places it at rest under the current head pose.
-    /// The points may have fewer entries than the strand's capacity (a shorter strand).
+    /// The points may have fewer entries than the strand's capacity (a shorter strand). <paramref name="pinned"/> = 0
+    /// makes a free strand (a clipping, a loose hair): nothing holds it to the head, it falls and collides as a whole,
+    /// its segments keep their lengths and bend against each other (docs/robustness.md).
     /// </summary>
     public void SetStrand(int strand, ReadOnlySpan<Vector3> restHeadSpace, int pinned = 1, bool straightRestShape = false)
     {
@@ -177,14 +194,14 @@ public sealed class HairWorld
         int cap = StrandCapacity[strand];
         if (restHeadSpace.Length < 2 || restHeadSpace.Length > cap)
             throw new ArgumentException($"A strand needs 2 … {cap} points, got {restHeadSpace.Length}.", nameof(restHeadSpace));
-        if (pinned < 1 || pinned > restHeadSpace.Length)
-            throw new ArgumentOutOfRangeException(nameof(pinned), pinned, "At least the root must be pinned, at most every point.");
+        if (pinned < 0 || pinned > restHeadSpace.Length)
+            throw new ArgumentOutOfRangeException(nameof(pinned), pinned, $"Pinned particles must be in 0 (a free strand) … {restHeadSpace.Length} (every point).");
         double chord = 0;
         for (int k = 0; k < restHeadSpace.Length; k++)
         {
             var p = restHeadSpace[k];
-            if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z))
-                throw new ArgumentException($"Point {k} of strand {strand} is not finite.", nameof(restHeadSpace));
+            if (!InRange(p))
+                throw new ArgumentException($"Point {k} of strand {strand} must be finite and within ±{MaxCoordinate:G} m, got {p}.", nameof(restHeadSpace));
             if (k > 0) chord += Vector3.Distance(p, restHeadSpace[k - 1]);
         }
         // Coincident: a segment shorter than a millionth of the strand's mean segment (scale-free), or exactly zero.
@@ -207,7 +224,7 @@ public sealed class HairWorld
             RestX[i] = p.X; RestY[i] = p.Y; RestZ[i] = p.Z;
             RestLength[i] = k == 0 || k >= n ? 0f : Vector3.Distance(p, restHeadSpace[k - 1]);
             InvMass[i] = k < pinned ? 0f : 1f;
-            SetPosition(i, head.TransformPoint(p));
+            PutPosition(i, head.TransformPoint(p));
             VelX[i] = VelY[i] = VelZ[i] = 0f;
         }
         if (straightRestShape) RestShape.SetStraight(this, strand);
@@ -228,8 +245,8 @@ public sealed class HairWorld
         for (int k = 0; k < startWorld.Length; k++)
         {
             var p = startWorld[k];
-            if (!float.IsFinite(p.X) || !float.IsFinite(p.Y) || !float.IsFinite(p.Z))
-                throw new ArgumentException($"Start point {k} of strand {strand} is not finite.", nameof(startWorld));
+            if (!InRange(p))
+                throw new ArgumentException($"Start point {k} of strand {strand} must be finite and within ±{MaxCoordinate:G} m, got {p}.", nameof(startWorld));
         }
         SetStrand(strand, restHeadSpace, pinned, straightRestShape);
         int first = StrandFirst[strand];
@@ -242,7 +259,7 @@ public sealed class HairWorld
         var head = Head;
         for (int i = 0; i < ParticleCount; i++)
         {
-            SetPosition(i, head.TransformPoint(GetRest(i)));
+            PutPosition(i, head.TransformPoint(GetRest(i)));
             VelX[i] = VelY[i] = VelZ[i] = 0f;
         }
     }
@@ -250,13 +267,55 @@ public sealed class HairWorld
     /// <summary>Moves the head without simulating: every particle is carried rigidly (used at load and for teleports).</summary>
     public void PlaceHead(RigidTransform head)
     {
+        CheckHead(head, nameof(head));
         var delta = RigidTransform.Delta(Head, head);
         for (int i = 0; i < ParticleCount; i++)
         {
-            SetPosition(i, delta.TransformPoint(GetPosition(i)));
-            SetVelocity(i, delta.TransformDirection(GetVelocity(i)));
+            PutPosition(i, delta.TransformPoint(GetPosition(i)));
+            PutVelocity(i, delta.TransformDirection(GetVelocity(i)));
         }
         Head = head;
+    }
+
+    /// <summary>Refuses a head pose the solver cannot use: a non-finite or zero rotation (a default value) or a position beyond <see cref="MaxCoordinate"/>.</summary>
+    internal static void CheckHead(in RigidTransform head, string name)
+    {
+        var p = head.Position; var q = head.Rotation;
+        if (!InRange(p) || !float.IsFinite(q.X) || !float.IsFinite(q.Y) || !float.IsFinite(q.Z) || !float.IsFinite(q.W) || q.LengthSquared() < 1e-12f)
+            throw new ArgumentException($"The head pose must have a finite position within ±{MaxCoordinate:G} m and a non-zero rotation, got {p}, {q}.", name);
+    }
+
+    // Which strands are free (no live particle pinned), derived from the masses and live counts: kept until the next edit.
+    private readonly object _freeGate = new();
+    private bool[]? _free;
+    private int _freeCount, _freeStamp = int.MinValue;
+
+    /// <summary>Strands with no pinned live particle (free strands: clippings, loose hair).</summary>
+    public int FreeStrandCount { get { EnsureFreeStrands(); return _freeCount; } }
+
+    /// <summary>Whether strand s has no pinned live particle: it is held by nothing, so the solver shares its corrections out over the whole strand.</summary>
+    public bool IsFreeStrand(int s) { EnsureFreeStrands(); return _freeCount > 0 && _free![s]; }
+
+    /// <summary>Recomputes the free strands after an edit (the pipeline calls it before a frame's jobs, so jobs only read).</summary>
+    internal void EnsureFreeStrands()
+    {
+        if (Volatile.Read(ref _freeStamp) == EditStamp) return;
+        lock (_freeGate)
+        {
+            int stamp = EditStamp;
+            if (_freeStamp == stamp) return;
+            _free ??= new bool[StrandCount];
+            int count = 0;
+            for (int s = 0; s < StrandCount; s++)
+            {
+                bool free = true;
+                for (int i = StrandFirst[s], end = i + StrandParticleCount[s]; i < end && free; i++) free = InvMass[i] != 0f;
+                _free[s] = free;
+                if (free) count++;
+            }
+            _freeCount = count;
+            Volatile.Write(ref _freeStamp, stamp);
+        }
     }
 
     /// <summary>Says that masses, rest pose, rest shape or live counts were written: caches derived from them are rebuilt.</summary>
@@ -274,10 +333,10 @@ public sealed class HairWorld
             int first = StrandFirst[s], end = first + StrandParticleCount[s];
             for (int i = first; i < end; i++)
             {
-                if (!float.IsFinite(RestX[i]) || !float.IsFinite(RestY[i]) || !float.IsFinite(RestZ[i]))
-                    throw new ArgumentException($"Strand {s}: the rest position of particle {i - first} is not finite.");
-                if (!float.IsFinite(RestLength[i]) || RestLength[i] < 0f)
-                    throw new ArgumentException($"Strand {s}: the rest length of particle {i - first} must be finite and ≥ 0, got {RestLength[i]}.");
+                if (!InRange(new Vector3(RestX[i], RestY[i], RestZ[i])))
+                    throw new ArgumentException($"Strand {s}: the rest position of particle {i - first} must be finite and within ±{MaxCoordinate:G} m, got {GetRest(i)}.");
+                if (!(RestLength[i] >= 0f && RestLength[i] <= MaxCoordinate))
+                    throw new ArgumentException($"Strand {s}: the rest length of particle {i - first} must be in 0 … {MaxCoordinate:G} m, got {RestLength[i]}.");
                 if (!float.IsFinite(InvMass[i]) || InvMass[i] < 0f)
                     throw new ArgumentException($"Strand {s}: the inverse mass of particle {i - first} must be finite and ≥ 0, got {InvMass[i]}.");
             }

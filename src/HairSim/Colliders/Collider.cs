@@ -59,7 +59,7 @@ public readonly struct Collider
     public static Collider Sphere(Vector3 center, float radius)
     {
         FiniteVec(center, nameof(center));
-        if (!float.IsFinite(radius) || radius <= 0f) throw new ArgumentOutOfRangeException(nameof(radius), radius, "Sphere radius must be positive and finite.");
+        if (!(radius > 0f && radius <= HairWorld.MaxCoordinate)) throw new ArgumentOutOfRangeException(nameof(radius), radius, $"Sphere radius must be in (0, {HairWorld.MaxCoordinate:G}] m.");
         return new Collider(ColliderKind.Sphere, center, center, new Vector3(radius), Quaternion.Identity);
     }
 
@@ -67,7 +67,7 @@ public readonly struct Collider
     public static Collider Capsule(Vector3 a, Vector3 b, float radius)
     {
         FiniteVec(a, nameof(a)); FiniteVec(b, nameof(b));
-        if (!float.IsFinite(radius) || radius <= 0f) throw new ArgumentOutOfRangeException(nameof(radius), radius, "Capsule radius must be positive and finite.");
+        if (!(radius > 0f && radius <= HairWorld.MaxCoordinate)) throw new ArgumentOutOfRangeException(nameof(radius), radius, $"Capsule radius must be in (0, {HairWorld.MaxCoordinate:G}] m.");
         return new Collider(ColliderKind.Capsule, a, b, new Vector3(radius), Quaternion.Identity);
     }
 
@@ -86,10 +86,11 @@ public readonly struct Collider
         return new Collider(ColliderKind.Plane, point, MathF.Abs(len - 1f) <= 1e-6f ? normal : normal / len, Vector3.Zero, Quaternion.Identity);
     }
 
+    /// <summary>Finite and within ±<see cref="HairWorld.MaxCoordinate"/> (a point, a size or a normal before it is normalised).</summary>
     private static void FiniteVec(Vector3 v, string name)
     {
-        if (!float.IsFinite(v.X) || !float.IsFinite(v.Y) || !float.IsFinite(v.Z))
-            throw new ArgumentException($"{name} must be finite, got {v}.", name);
+        if (!HairWorld.InRange(v))
+            throw new ArgumentException($"{name} must be finite and within ±{HairWorld.MaxCoordinate:G}, got {v}.", name);
     }
 
     /// <summary>This collider placed by a head pose (a world-space collider is already placed).</summary>

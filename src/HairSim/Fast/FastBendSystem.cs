@@ -99,7 +99,7 @@ public sealed partial class FastBendSystem : IHairSystem
 
     // The stack tile is fully written before it is read (uniform groups by the transposes, others cleared first).
     [SkipLocalsInit]
-    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
+    private void RunTiles(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
         var w = scene.World;
         var st = ctx.Settings;

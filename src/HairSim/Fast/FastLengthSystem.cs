@@ -44,7 +44,7 @@ public sealed partial class FastLengthSystem : IHairSystem
 
     // The stack scratch is fully written before it is read, or only read in lanes that are masked out.
     [SkipLocalsInit]
-    public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
+    private void RunTiles(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
         var st = ctx.Settings;
         if (st.Length == LengthMode.None || LengthSystem.FusedIntoBend(st)) return;

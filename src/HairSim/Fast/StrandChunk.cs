@@ -226,6 +226,7 @@ internal sealed class StrandChunkRunner
             if (c != cap) return s; // a chunk of the new capacity may start here
             if (w.StrandParticleCount[s] != c && !_cutThisFrame) return s + 1;
             if (w.StrandFirst[s] != first + l * cap) return s; // not contiguous with s − 1
+            if (w.IsFreeStrand(s)) return s + 1; // free strands share their sweeps' corrections out (FreeStrands): not in chunks
         }
         foreach (var c in _chunkSystems)
         {

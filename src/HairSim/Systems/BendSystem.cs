@@ -72,6 +72,8 @@ public sealed class BendSystem : IHairSystem
     private void Sweep(HairWorld w, int s, double h, double damping, double zeta, double maxSpeed, in Vector3D fall, in RigidTransform head)
     {
         int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
+        // Nothing holds a free strand's root for the sweep to lead from; joint j's T² is at _t2[first + j] (see BendProfile).
+        if (w.IsFreeStrand(s)) { FreeStrands.Relax(w, s, h, _t2, first); return; }
         var q = new QuatD(head.Rotation);
         double hh = h * h, zeta2h = 2 * zeta * h;
         // The parent segment's direction and its change over this substep's prediction (h × its angular rate, from

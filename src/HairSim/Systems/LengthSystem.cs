@@ -34,7 +34,8 @@ public sealed class LengthSystem : IHairSystem
         double h = ctx.H;
         for (int s = begin; s < end; s++)
         {
-            if (st.Length == LengthMode.FollowTheLeader) FollowTheLeader(w, s, h, st.LengthDamping, ctx.HeadAt(substep));
+            if (st.Length == LengthMode.FollowTheLeader && w.IsFreeStrand(s)) FreeStrands.Relax(w, s, h);
+            else if (st.Length == LengthMode.FollowTheLeader) FollowTheLeader(w, s, h, st.LengthDamping, ctx.HeadAt(substep));
             else if (st.Length == LengthMode.Pbd) Pbd(w, s, h, st.LengthIterations);
         }
     }

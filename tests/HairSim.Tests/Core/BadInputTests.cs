@@ -63,7 +63,7 @@ public class BadInputTests
         Assert.Throws<ArgumentException>(() => w.SetStrand(3, zeroEdge));
         Assert.Throws<ArgumentException>(() => w.SetStrand(3, pts.AsSpan(0, 1)));
         Assert.Throws<ArgumentException>(() => w.SetStrand(3, new Vector3[n + 1]));
-        Assert.Throws<ArgumentOutOfRangeException>(() => w.SetStrand(3, pts, pinned: 0));
+        Assert.Throws<ArgumentOutOfRangeException>(() => w.SetStrand(3, pts, pinned: -1));
         Assert.Throws<ArgumentOutOfRangeException>(() => w.SetStrand(w.StrandCount, pts));
         Assert.True(w.BitEquals(before));
     }
