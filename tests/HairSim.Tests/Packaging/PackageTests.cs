@@ -18,13 +18,12 @@ public sealed class PackageFixture : IDisposable
     public string Root { get; } = RepositoryRoot();
     public string Temp { get; } = Path.Combine(Path.GetTempPath(), "hairsim-pack-" + Guid.NewGuid().ToString("N"));
     public string Feed => Path.Combine(Temp, "feed");
-    public string Version { get; }
+    /// <summary>The version the pack gave the package (from git tags, MinVer), known after <see cref="Pack"/>.</summary>
+    public string Version { get; private set; } = "";
     private readonly Lazy<(int Code, string Log)> _pack;
 
     public PackageFixture()
     {
-        var csproj = XDocument.Load(Path.Combine(Root, "src", "HairSim", "HairSim.csproj"));
-        Version = csproj.Descendants("Version").Single().Value;
         _pack = new Lazy<(int, string)>(() => Dotnet(Root,
             "pack", Path.Combine("src", "HairSim", "HairSim.csproj"), "-c", "Release", "-o", Feed,
             $"-p:BaseOutputPath={Path.Combine(Temp, "bin")}/", $"-p:BaseIntermediateOutputPath={Path.Combine(Temp, "obj")}/"));
@@ -35,6 +34,15 @@ public sealed class PackageFixture : IDisposable
     {
         var (code, log) = _pack.Value;
         Assert.True(code == 0, "dotnet pack src/HairSim failed:\n" + log);
+        Version = PackedVersion(Feed);
+    }
+
+    /// <summary>The version of the one HairSim package in a folder (HairSim.{version}.nupkg).</summary>
+    public static string PackedVersion(string folder)
+    {
+        var packages = Directory.GetFiles(folder, "HairSim.*.nupkg");
+        Assert.True(packages.Length == 1, "expected one HairSim package in " + folder + ": " + string.Join(", ", packages.Select(Path.GetFileName)));
+        return Path.GetFileName(packages[0])["HairSim.".Length..^".nupkg".Length];
     }
 
     /// <summary>Runs the dotnet CLI as a user would (CI=true: a CI build), without the test host's MSBuild variables.</summary>
@@ -59,6 +67,18 @@ public sealed class PackageFixture : IDisposable
         var stderr = p.StandardError.ReadToEndAsync();
         if (!p.WaitForExit(TimeSpan.FromMinutes(10))) { p.Kill(entireProcessTree: true); return (-1, "dotnet " + string.Join(' ', args) + ": no exit after 10 minutes"); }
         return (p.ExitCode, stdout.Result + stderr.Result);
+    }
+
+    /// <summary>Runs git; (exit code, standard output).</summary>
+    public (int Code, string Output) Git(string workingDirectory, params string[] args)
+    {
+        var psi = new ProcessStartInfo("git") { WorkingDirectory = workingDirectory, RedirectStandardOutput = true, RedirectStandardError = true, UseShellExecute = false };
+        foreach (var a in args) psi.ArgumentList.Add(a);
+        using var p = Process.Start(psi)!;
+        var stdout = p.StandardOutput.ReadToEndAsync();
+        _ = p.StandardError.ReadToEndAsync();
+        p.WaitForExit();
+        return (p.ExitCode, stdout.Result);
     }
 
     public static string RepositoryRoot()
@@ -189,6 +209,26 @@ public class PackageTests(PackageFixture fixture) : IClassFixture<PackageFixture
     }
 
     [Fact]
+    public void ThePackageVersionComesFromGitTags()
+    {
+        fixture.Pack();
+        // Untagged (this repository has no release tag yet) or past a tag: a prerelease of the next version with the
+        // commit height, e.g. 0.1.0-alpha.0.164; on a tagged commit: the tag.
+        if (!Directory.Exists(Path.Combine(fixture.Root, ".git")) && !File.Exists(Path.Combine(fixture.Root, ".git"))) return;
+        var (code, described) = fixture.Git(fixture.Root, "describe", "--tags", "--exact-match", "--match", "v[0-9]*");
+        if (code == 0) Assert.Equal(described.Trim()[1..], fixture.Version);
+        else Assert.Matches(@"^\d+\.\d+\.\d+-alpha\.0\.\d+$", fixture.Version);
+        // A tag on a clone of this commit is the package's version.
+        string clone = Path.Combine(fixture.Temp, "tagged");
+        Assert.Equal(0, fixture.Git(fixture.Temp, "clone", "--quiet", "--local", "--no-hardlinks", fixture.Root, clone).Code);
+        Assert.Equal(0, fixture.Git(clone, "-c", "user.name=test", "-c", "user.email=test@example.com", "tag", "-a", "v9.8.7", "-m", "test release").Code);
+        string feed = Path.Combine(fixture.Temp, "tagged-feed");
+        var (packed, log) = fixture.Dotnet(clone, "pack", Path.Combine("src", "HairSim", "HairSim.csproj"), "-c", "Release", "-o", feed);
+        Assert.True(packed == 0, "pack of the tagged clone failed:\n" + log);
+        Assert.Equal("9.8.7", PackageFixture.PackedVersion(feed));
+    }
+
+    [Fact]
     public void TheReadmeShowsThePackageSampleProjectAndItsVersionIsTheLibrarys()
     {
         string root = PackageFixture.RepositoryRoot();
@@ -197,9 +237,11 @@ public class PackageTests(PackageFixture fixture) : IClassFixture<PackageFixture
         var block = Regex.Match(readme, "<!-- package-sample:begin -->\n```xml\n(.*?)```\n<!-- package-sample:end -->", RegexOptions.Singleline);
         Assert.True(block.Success, "README has no package-sample block");
         Assert.Equal(csproj, block.Groups[1].Value);
-        string version = XDocument.Load(Path.Combine(root, "src", "HairSim", "HairSim.csproj")).Descendants("Version").Single().Value;
+        // The version is git's (a prerelease between tags), so the sample takes the newest of the library's major version,
+        // prereleases included; a game names the release it tested instead.
+        string fallback = XDocument.Load(Path.Combine(root, "src", "HairSim", "HairSim.csproj")).Descendants("Version").Single().Value;
         var reference = XDocument.Parse(csproj).Descendants("PackageReference").Single(r => (string?)r.Attribute("Include") == "HairSim");
-        Assert.Equal(version, (string?)reference.Attribute("Version"));
+        Assert.Equal(fallback.Split('.')[0] + ".*-*", (string?)reference.Attribute("Version"));
     }
 
     [Fact]
