@@ -144,9 +144,13 @@ public sealed class SimulationSettings
         target.Guards = Guards; target.MaxSubstep = MaxSubstep; target.MaxHeadTravel = MaxHeadTravel; target.MaxFallPerSubstep = MaxFallPerSubstep;
     }
 
+    /// <summary>Strongest gravity accepted (m/s², about 1000 g; the stability map goes to 100 g): beyond it a substep's fall exceeds anything float positions hold.</summary>
+    public const float MaxGravity = 1e4f;
+
     public void Validate()
     {
-        Finite(Gravity.X, "Gravity"); Finite(Gravity.Y, "Gravity"); Finite(Gravity.Z, "Gravity");
+        if (!(Gravity.Length() <= MaxGravity))
+            throw new ArgumentOutOfRangeException(nameof(Gravity), Gravity, $"Gravity must be finite and at most {MaxGravity} m/s² (about 1000 g), got {Gravity}.");
         Range(Sag, 0f, 100f, nameof(Sag));
         Range(BendDamping, 0f, 100f, nameof(BendDamping));
         Range(Alpha, 0f, 1000f, nameof(Alpha));
