@@ -150,7 +150,7 @@ public sealed class SimulationSettings
     public void Validate()
     {
         if (!(Gravity.Length() <= MaxGravity))
-            throw new ArgumentOutOfRangeException(nameof(Gravity), Gravity, $"Gravity must be finite and at most {MaxGravity} m/s² (about 1000 g), got {Gravity}.");
+            throw new ArgumentException($"Gravity must be finite and at most {MaxGravity} m/s² (about 1000 g), got {Gravity}.", nameof(Gravity));
         Range(Sag, 0f, 100f, nameof(Sag));
         Range(BendDamping, 0f, 100f, nameof(BendDamping));
         Range(Alpha, 0f, 1000f, nameof(Alpha));
