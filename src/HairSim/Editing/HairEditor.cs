@@ -166,7 +166,7 @@ public static class HairEditor
     /// Does the mesh cover a point at ray distance tp? The trace stops a little short of the point (two cells, at least
     /// 2 mm), so hair lying on the surface is not hidden by the surface under it.
     /// </summary>
-    private static bool MeshHides(Meshes.MeshCollider mesh, in RigidTransform head, Vector3 origin, Vector3 dir, float tp) =>
+    internal static bool MeshHides(Meshes.MeshCollider mesh, in RigidTransform head, Vector3 origin, Vector3 dir, float tp) =>
         ColliderRay.Intersect(mesh, mesh.PoseFor(head), origin, dir, tp - MathF.Max(0.002f, 2f * mesh.Field.CellSize), out _);
 
     private static bool Hidden(StrokeCamera cam, Collider[] colliders, Vector3 p, Vector2 screen)

@@ -79,7 +79,6 @@ public sealed class ScalpPaint
         if (mode is not (ScalpPaintMode.Add or ScalpPaintMode.Remove)) throw new ArgumentOutOfRangeException(nameof(mode), mode, "Unknown paint mode.");
         bool value = mode == ScalpPaintMode.Add;
         var changed = new List<int>();
-        var pose = occluder?.PoseFor(head) ?? head;
         for (int t = 0; t < _scalp.Length; t++)
         {
             if (_scalp[t] == value) continue;
@@ -89,7 +88,7 @@ public sealed class ScalpPaint
             var normal = head.TransformDirection(Mesh.FaceNormal(t));
             var toCamera = camera.Kind == CameraProjection.Perspective ? camera.Position - centre : -camera.Forward;
             if (Vector3.Dot(normal, toCamera) <= 0f) continue;
-            if (occluder != null && Hidden(occluder, pose, camera, centre)) continue;
+            if (occluder != null && Hidden(occluder, head, camera, centre)) continue;
             changed.Add(t);
         }
         if (changed.Count == 0) return 0;
@@ -128,13 +127,12 @@ public sealed class ScalpPaint
         foreach (int t in step.Triangles) _scalp[t] = forward ? step.Value : !step.Value;
     }
 
-    /// <summary>Does the mesh cover the point from the camera? The trace stops two cells short of it (the point's own surface).</summary>
-    private static bool Hidden(MeshCollider occluder, in RigidTransform pose, StrokeCamera camera, Vector3 point)
+    /// <summary>Does the mesh cover the point from the camera? (The visible-only cut's test, from the camera's ray.)</summary>
+    private static bool Hidden(MeshCollider occluder, in RigidTransform head, StrokeCamera camera, Vector3 point)
     {
         Vector3 origin, dir;
         if (camera.Kind == CameraProjection.Perspective) { origin = camera.Position; dir = Vector3.Normalize(point - origin); }
         else { dir = camera.Forward; origin = point - dir * 1000f * MathF.Max(1f, occluder.Field.CellSize); }
-        float reach = Vector3.Dot(point - origin, dir) - MathF.Max(0.002f, 2f * occluder.Field.CellSize);
-        return reach > 0f && ColliderRay.Intersect(occluder, pose, origin, dir, reach, out _);
+        return HairEditor.MeshHides(occluder, head, origin, dir, Vector3.Dot(point - origin, dir));
     }
 }
