@@ -1,11 +1,12 @@
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 namespace HairSim.Fast;
 
 /// <summary>
 /// The bend sweep on a <see cref="StrandChunk"/>: 32 uncut 16-particle strands in rows, the 16-lane sweep's two
 /// chains, so the default pipeline steps chunks (every system's substeps in L1) like the source's did. The sweep
-/// updates the chunk's velocity rows in place; its per-strand rest directions and spring shares are transposed into
-/// the chunk's bend rows once per chunk and frame. The same arithmetic on the same rows as the tiled sweep, so the
+/// updates the chunk's velocity rows in place; its per-strand rest directions and spring shares are read from a
+/// block kept in the chunk's row layout (refilled only when they change). The same arithmetic on the same rows as the tiled sweep, so the
 /// same bits (StrandChunkTests).
 /// </summary>
 public sealed partial class FastBendSystem : IStrandChunkSystem
@@ -26,30 +27,49 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         return true;
     }
 
+    // The chunk's rest directions and joint shares, kept in its row layout between frames: the block of the chunk whose
+    // first particle is F holds field f's row k, lane l at ChunkBendFields·F + f·32·height + 32k + l, so the blocks of
+    // disjoint chunks never overlap and follow one another in memory as the chunks do. A chunk's sweep reads its block
+    // in place (no transposes per frame); the block is refilled only when a strand's cache changed (FillCache and
+    // CacheShares clear _chunkBlock) or its strands were last laid out by another chunk.
+    private const int ChunkBendFields = 5;
+    private readonly float[] _chunkBend;
+    /// <summary>Per strand: the first strand of the chunk whose block holds its current rest data, or −1.</summary>
+    private readonly int[] _chunkBlock;
+
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
     {
         if (!_chunkActive) return;
-        for (int s = s0; s < s0 + StrandChunk.Lanes; s++) EnsureCache(w, s, _chunkSag, _chunkH, _chunkZeta);
-        int first = w.StrandFirst[s0], height = chunk.Height;
-        StrandChunkRunner.LoadRows(_restX, first, height, ref chunk.Row(StrandChunk.BendRestX, 0));
-        StrandChunkRunner.LoadRows(_restY, first, height, ref chunk.Row(StrandChunk.BendRestY, 0));
-        StrandChunkRunner.LoadRows(_restZ, first, height, ref chunk.Row(StrandChunk.BendRestZ, 0));
-        StrandChunkRunner.LoadRows(_jointA, first, height, ref chunk.Row(StrandChunk.BendA, 0));
-        StrandChunkRunner.LoadRows(_jointB, first, height, ref chunk.Row(StrandChunk.BendB, 0));
+        bool laidOut = true;
+        for (int s = s0; s < s0 + StrandChunk.Lanes; s++)
+        {
+            EnsureCache(w, s, _chunkSag, _chunkH, _chunkZeta);
+            laidOut &= _chunkBlock[s] == s0;
+        }
+        if (laidOut) return;
+        int first = w.StrandFirst[s0], height = chunk.Height, cells = StrandChunk.Lanes * height;
+        // Transposed through the tile's bend rows (whole 16-row blocks), then the chunk's own rows copied out.
+        ReadOnlySpan<float[]> src = [_restX, _restY, _restZ, _jointA, _jointB];
+        for (int f = 0; f < ChunkBendFields; f++)
+        {
+            ref float rows = ref chunk.Row(StrandChunk.BendRestX + f, 0);
+            StrandChunkRunner.LoadRows(src[f], first, height, ref rows);
+            MemoryMarshal.CreateReadOnlySpan(ref rows, cells).CopyTo(_chunkBend.AsSpan(ChunkBendFields * first + f * cells, cells));
+        }
+        for (int s = s0; s < s0 + StrandChunk.Lanes; s++) _chunkBlock[s] = s0;
     }
 
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         if (!_chunkActive) return true;
         var t = chunk.Tile;
+        int cells = StrandChunk.Lanes * chunk.Height;
         var p = new SweepParams(ctx, substep, StrandChunk.Lanes,
             t.Offset(StrandChunk.X), t.Offset(StrandChunk.Y), t.Offset(StrandChunk.Z),
             t.Offset(StrandChunk.VelX), t.Offset(StrandChunk.VelY), t.Offset(StrandChunk.VelZ),
             t.Offset(StrandChunk.InvMass), t.Offset(StrandChunk.RestLength),
-            t.Offset(StrandChunk.BendRestX), t.Offset(StrandChunk.BendRestY), t.Offset(StrandChunk.BendRestZ),
-            t.Offset(StrandChunk.BendA), t.Offset(StrandChunk.BendB));
-        ref float d = ref t.Data[0];
-        Sweep16(ref d, ref d, chunk.Height, in p);
+            0, cells, 2 * cells, 3 * cells, 4 * cells);
+        Sweep16(ref t.Data[0], ref _chunkBend[ChunkBendFields * chunk.Firsts[0]], chunk.Height, in p);
         return true;
     }
 }

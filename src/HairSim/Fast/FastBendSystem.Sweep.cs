@@ -15,10 +15,12 @@ public sealed partial class FastBendSystem
     /// <summary>Sweep constants broadcast to Vector&lt;float&gt; lanes.</summary>
     private readonly struct Consts
     {
-        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed, MaxSpeedSq;
+        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed, MaxSpeedSq, Tiny;
 
         public Consts(in SweepParams p)
         {
+            // len² above this: 1/len² is finite, so 1/len may be taken as len/len².
+            Tiny = new(1e-30f);
             H = new(p.H); InvH = new(p.InvH); Reaction = new(p.Reaction); MaxSpeed = new(p.MaxSpeed); MaxSpeedSq = new(p.MaxSpeed * p.MaxSpeed);
             FallX = new(p.FallX); FallY = new(p.FallY); FallZ = new(p.FallZ);
             Eps = new(1e-6f); Flip = new(-0.9999f);
@@ -31,7 +33,7 @@ public sealed partial class FastBendSystem
     // so far (h·v + Δ, with v not yet kicked) and whether it is free (its inverse mass). Fewer stores per row made
     // the sweep measurably faster (the same bits).
     private const int Sqx = 0, Sqy = 1, Sqz = 2, Sqw = 3, Sdx = 4, Sdy = 5, Sdz = 6, Scx = 7, Scy = 8, Scz = 9,
-        SDx = 10, SDy = 11, SDz = 12, Slots = 13;
+        SDx = 10, SDy = 11, SDz = 12, Stx = 13, Sty = 14, Stz = 15, Slots = 16;
 
     /// <summary>
     /// Root to tip over rows 1 … rows−1, each row's velocity kick applied one row later (it needs the child's
@@ -53,29 +55,36 @@ public sealed partial class FastBendSystem
             Simd.St(ref s, Sqx * lanes + h, new V(p.Qx)); Simd.St(ref s, Sqy * lanes + h, new V(p.Qy));
             Simd.St(ref s, Sqz * lanes + h, new V(p.Qz)); Simd.St(ref s, Sqw * lanes + h, new V(p.Qw));
             // Direction, turn and correction start at zero. The root is never kicked: it follows the head.
-            for (int slot = Sdx; slot < Slots; slot++) Simd.St(ref s, slot * lanes + h, zero);
+            for (int slot = Sdx; slot < Stx; slot++) Simd.St(ref s, slot * lanes + h, zero);
+            if (rows < 2) continue;
+            // Segment 1's target: its rest direction turned by the head.
+            Turn(new V(p.Qx), new V(p.Qy), new V(p.Qz), new V(p.Qw),
+                Simd.Ld(ref rest, p.Orx + lanes + h), Simd.Ld(ref rest, p.Ory + lanes + h), Simd.Ld(ref rest, p.Orz + lanes + h), out var tx1, out var ty1, out var tz1);
+            Simd.St(ref s, Stx * lanes + h, tx1); Simd.St(ref s, Sty * lanes + h, ty1); Simd.St(ref s, Stz * lanes + h, tz1);
         }
         for (int k = 1; k < rows; k++)
         {
             for (int h = 0; h < lanes; h += width)
             {
                 int r = k * lanes + h;
-                var qx = Simd.Ld(ref s, Sqx * lanes + h); var qy = Simd.Ld(ref s, Sqy * lanes + h); var qz = Simd.Ld(ref s, Sqz * lanes + h); var qw = Simd.Ld(ref s, Sqw * lanes + h);
                 var px = Simd.Ld(ref d, p.Ox + r - lanes); var py = Simd.Ld(ref d, p.Oy + r - lanes); var pz = Simd.Ld(ref d, p.Oz + r - lanes);
                 var x = Simd.Ld(ref d, p.Ox + r); var y = Simd.Ld(ref d, p.Oy + r); var z = Simd.Ld(ref d, p.Oz + r);
                 var free = ~Vector.Equals(Simd.Ld(ref d, p.Om + r), zero);
                 var rl = Simd.Ld(ref d, p.Ol + r);
                 var rx = Simd.Ld(ref rest, p.Orx + r); var ry = Simd.Ld(ref rest, p.Ory + r); var rz = Simd.Ld(ref rest, p.Orz + r);
                 var ex = x - px; var ey = y - py; var ez = z - pz;
-                var len = Vector.SquareRoot(ex * ex + ey * ey + ez * ez);
+                var len2 = Simd.MulAdd(ez, ez, Simd.MulAdd(ey, ey, ex * ex));
+                var len = Vector.SquareRoot(len2);
                 var hasLen = Vector.GreaterThan(len, zero);
-                var inv = Simd.Sel(hasLen, one / Simd.Sel(hasLen, len, one), zero);
+                // 1/len as len/len² where len² is far from underflow: the root and the division run side by side
+                // instead of one after the other (the row's new position waits on them, and on |m| below).
+                var clear = Vector.GreaterThan(len2, c.Tiny);
+                var inv2 = one / len2;
+                var inv = Simd.Sel(clear, len * inv2, Simd.Sel(hasLen, one / Simd.Sel(hasLen, len, one), zero));
                 var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
-                // Target: the rest direction turned by the frame carried from the root (v' = v + 2w(q×v) + 2q×(q×v)).
-                // With c = 2q×v (the doubling by adds: the sweep is bound by its multiplies): v' = v + w·c + q×c.
-                var q2x = qx + qx; var q2y = qy + qy; var q2z = qz + qz;
-                var cx = q2y * rz - q2z * ry; var cy = q2z * rx - q2x * rz; var cz = q2x * ry - q2y * rx;
-                var tx = rx + qw * cx + (qy * cz - qz * cy); var ty = ry + qw * cy + (qz * cx - qx * cz); var tz = rz + qw * cz + (qx * cy - qy * cx);
+                // Target: the rest direction turned by the frame carried from the root, worked out at the end of the
+                // row above (see below).
+                var tx = Simd.Ld(ref s, Stx * lanes + h); var ty = Simd.Ld(ref s, Sty * lanes + h); var tz = Simd.Ld(ref s, Stz * lanes + h);
                 // A rest direction to turn (any component non-zero, by bits: no multiplies).
                 var restOk = ~Vector.AsVectorInt32(Vector.Equals((Vector.AsVectorUInt32(rx) | Vector.AsVectorUInt32(ry) | Vector.AsVectorUInt32(rz)) & new Vector<uint>(0x7fffffffu), Vector<uint>.Zero));
                 tx = Simd.Sel(restOk, tx, Simd.Sel(hasLen, ux0, zero));
@@ -84,28 +93,34 @@ public sealed partial class FastBendSystem
                 var okLen = Vector.GreaterThan(len, c.Eps * rl) & hasLen;
                 var dx = Simd.Sel(okLen, ux0, tx); var dy = Simd.Sel(okLen, uy0, ty); var dz = Simd.Sel(okLen, uz0, tz);
                 // How far this segment turned since the substep's start (see BendSystem).
-                var hvx = c.H * Simd.Ld(ref d, p.Ovx + r); var hvy = c.H * Simd.Ld(ref d, p.Ovy + r); var hvz = c.H * Simd.Ld(ref d, p.Ovz + r);
-                var ux = hvx - (c.H * Simd.Ld(ref d, p.Ovx + r - lanes) + Simd.Ld(ref s, SDx * lanes + h));
-                var uy = hvy - (c.H * Simd.Ld(ref d, p.Ovy + r - lanes) + Simd.Ld(ref s, SDy * lanes + h));
-                var uz = hvz - (c.H * Simd.Ld(ref d, p.Ovz + r - lanes) + Simd.Ld(ref s, SDz * lanes + h));
-                var along = ux * dx + uy * dy + uz * dz;
-                var tcx = (ux - along * dx) * inv; var tcy = (uy - along * dy) * inv; var tcz = (uz - along * dz) * inv;
+                var ux = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovx + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovx + r - lanes), Simd.Ld(ref s, SDx * lanes + h)));
+                var uy = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovy + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovy + r - lanes), Simd.Ld(ref s, SDy * lanes + h)));
+                var uz = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovz + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovz + r - lanes), Simd.Ld(ref s, SDz * lanes + h)));
+                // Where d = e/len: (u − (u·d)d)/len = (u − (u·e)/len² e)/len, whose u·e does not wait for the root.
+                var ue = Simd.MulAdd(uz, ez, Simd.MulAdd(uy, ey, ux * ex)) * inv2;
+                var al = Simd.MulAdd(uz, dz, Simd.MulAdd(uy, dy, ux * dx));
+                var byE = clear & okLen;
+                var tcx = Simd.Sel(byE, Simd.NegMulAdd(ue, ex, ux) * inv, Simd.NegMulAdd(al, dx, ux) * inv);
+                var tcy = Simd.Sel(byE, Simd.NegMulAdd(ue, ey, uy) * inv, Simd.NegMulAdd(al, dy, uy) * inv);
+                var tcz = Simd.Sel(byE, Simd.NegMulAdd(ue, ez, uz) * inv, Simd.NegMulAdd(al, dz, uz) * inv);
                 // Target turned with the parent: Δt = (d_p × c_p) × t.
                 var pdx = Simd.Ld(ref s, Sdx * lanes + h); var pdy = Simd.Ld(ref s, Sdy * lanes + h); var pdz = Simd.Ld(ref s, Sdz * lanes + h);
                 var pcx = Simd.Ld(ref s, Scx * lanes + h); var pcy = Simd.Ld(ref s, Scy * lanes + h); var pcz = Simd.Ld(ref s, Scz * lanes + h);
-                var wx = pdy * pcz - pdz * pcy; var wy = pdz * pcx - pdx * pcz; var wz = pdx * pcy - pdy * pcx;
-                var ttx = wy * tz - wz * ty; var tty = wz * tx - wx * tz; var ttz = wx * ty - wy * tx;
+                var wx = Simd.MulSub(pdy, pcz, pdz * pcy); var wy = Simd.MulSub(pdz, pcx, pdx * pcz); var wz = Simd.MulSub(pdx, pcy, pdy * pcx);
+                var ttx = Simd.MulSub(wy, tz, wz * ty); var tty = Simd.MulSub(wz, tx, wx * tz); var ttz = Simd.MulSub(wx, ty, wy * tx);
                 // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
                 var a = Simd.Ld(ref rest, p.Oa + r); var b = Simd.Ld(ref rest, p.Ob + r);
                 var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
                 var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
-                var mx = tx + a * ox + b * sx; var my = ty + a * oy + b * sy; var mz = tz + a * oz + b * sz;
-                var ml = Vector.SquareRoot(mx * mx + my * my + mz * mz);
+                var mx = Simd.MulAdd(b, sx, Simd.MulAdd(a, ox, tx)); var my = Simd.MulAdd(b, sy, Simd.MulAdd(a, oy, ty)); var mz = Simd.MulAdd(b, sz, Simd.MulAdd(a, oz, tz));
+                var m2 = Simd.MulAdd(mz, mz, Simd.MulAdd(my, my, mx * mx));
+                var ml = Vector.SquareRoot(m2);
                 var mOk = Vector.GreaterThan(ml, c.Eps);
-                var invM = one / Simd.Sel(mOk, ml, one);
+                // 1/|m| as |m|/|m|², as 1/len above.
+                var invM = ml * (one / Simd.Sel(mOk, m2, one));
                 var ndx = Simd.Sel(mOk, mx * invM, tx); var ndy = Simd.Sel(mOk, my * invM, ty); var ndz = Simd.Sel(mOk, mz * invM, tz);
                 dx = Simd.Sel(free, ndx, dx); dy = Simd.Sel(free, ndy, dy); dz = Simd.Sel(free, ndz, dz);
-                var nx = px + dx * rl; var ny = py + dy * rl; var nz = pz + dz * rl;
+                var nx = Simd.MulAdd(dx, rl, px); var ny = Simd.MulAdd(dy, rl, py); var nz = Simd.MulAdd(dz, rl, pz);
                 var cdx = Simd.Sel(free, nx - x, zero); var cdy = Simd.Sel(free, ny - y, zero); var cdz = Simd.Sel(free, nz - z, zero);
                 x += cdx; y += cdy; z += cdz;
                 Simd.St(ref d, p.Ox + r, x); Simd.St(ref d, p.Oy + r, y); Simd.St(ref d, p.Oz + r, z);
@@ -116,25 +131,40 @@ public sealed partial class FastBendSystem
                 Simd.St(ref s, SDx * lanes + h, cdx); Simd.St(ref s, SDy * lanes + h, cdy); Simd.St(ref s, SDz * lanes + h, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
-                along = ux * dx + uy * dy + uz * dz;
-                Simd.St(ref s, Scx * lanes + h, (ux - along * dx) * inv); Simd.St(ref s, Scy * lanes + h, (uy - along * dy) * inv);
-                Simd.St(ref s, Scz * lanes + h, (uz - along * dz) * inv);
+                var along = Simd.MulAdd(uz, dz, Simd.MulAdd(uy, dy, ux * dx));
+                Simd.St(ref s, Scx * lanes + h, Simd.NegMulAdd(along, dx, ux) * inv); Simd.St(ref s, Scy * lanes + h, Simd.NegMulAdd(along, dy, uy) * inv);
+                Simd.St(ref s, Scz * lanes + h, Simd.NegMulAdd(along, dz, uz) * inv);
                 Simd.St(ref s, Sdx * lanes + h, dx); Simd.St(ref s, Sdy * lanes + h, dy); Simd.St(ref s, Sdz * lanes + h, dz);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
-                var dot = tx * dx + ty * dy + tz * dz;
-                var fx = ty * dz - tz * dy; var fy = tz * dx - tx * dz; var fz = tx * dy - ty * dx; var fw = one + dot;
-                var flip = Vector.LessThan(dot, c.Flip);
+                // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised: the
+                // next target is this row's rest-turned target t̃ = q r_{k+1} q* turned by f as f t̃ f*/|f|², which needs
+                // no square root (the root that scales f∘q to unit length is off the row-to-row chain).
+                var byM = free & mOk;
+                var gx = Simd.Sel(byM, mx, dx); var gy = Simd.Sel(byM, my, dy); var gz = Simd.Sel(byM, mz, dz); var gl = Simd.Sel(byM, ml, one);
+                var dot = Simd.MulAdd(tz, gz, Simd.MulAdd(ty, gy, tx * gx));
+                var fx = Simd.MulSub(ty, gz, tz * gy); var fy = Simd.MulSub(tz, gx, tx * gz); var fz = Simd.MulSub(tx, gy, ty * gx); var fw = gl + dot;
+                var flip = Vector.LessThan(dot, c.Flip * gl);
                 fx = Simd.Sel(flip, zero, fx); fy = Simd.Sel(flip, zero, fy); fz = Simd.Sel(flip, zero, fz); fw = Simd.Sel(flip, one, fw);
-                // f normalised by its own length (not 2(1 + t·d), which amplifies any error in |t| near a flip), and
-                // f∘q left as it is: a product of unit quaternions, and q is rebuilt from the head every substep.
-                var fInv = one / Vector.SquareRoot(fx * fx + fy * fy + fz * fz + fw * fw);
-                fx *= fInv; fy *= fInv; fz *= fInv; fw *= fInv;
-                var nqx = fw * qx + fx * qw + fy * qz - fz * qy;
-                var nqy = fw * qy - fx * qz + fy * qw + fz * qx;
-                var nqz = fw * qz + fx * qy - fy * qx + fz * qw;
-                var nqw = fw * qw - fx * qx - fy * qy - fz * qz;
-                Simd.St(ref s, Sqx * lanes + h, nqx); Simd.St(ref s, Sqy * lanes + h, nqy);
-                Simd.St(ref s, Sqz * lanes + h, nqz); Simd.St(ref s, Sqw * lanes + h, nqw);
+                var invF2 = one / Simd.MulAdd(fw, fw, Simd.MulAdd(fz, fz, Simd.MulAdd(fy, fy, fx * fx)));
+                var qx = Simd.Ld(ref s, Sqx * lanes + h); var qy = Simd.Ld(ref s, Sqy * lanes + h); var qz = Simd.Ld(ref s, Sqz * lanes + h); var qw = Simd.Ld(ref s, Sqw * lanes + h);
+                if (k + 1 < rows)
+                {
+                    int rn = r + lanes;
+                    Turn(qx, qy, qz, qw, Simd.Ld(ref rest, p.Orx + rn), Simd.Ld(ref rest, p.Ory + rn), Simd.Ld(ref rest, p.Orz + rn), out var nx1, out var ny1, out var nz1);
+                    // f v f*/|f|² = v + (2/|f|²)(w (f×v) + f×(f×v)).
+                    var ex1 = Simd.MulSub(fy, nz1, fz * ny1); var ey1 = Simd.MulSub(fz, nx1, fx * nz1); var ez1 = Simd.MulSub(fx, ny1, fy * nx1);
+                    var gx1 = Simd.MulSub(fy, ez1, Simd.NegMulAdd(fw, ex1, fz * ey1)); var gy1 = Simd.MulSub(fz, ex1, Simd.NegMulAdd(fw, ey1, fx * ez1));
+                    var gz1 = Simd.MulSub(fx, ey1, Simd.NegMulAdd(fw, ez1, fy * ex1));
+                    var twice = invF2 + invF2;
+                    Simd.St(ref s, Stx * lanes + h, Simd.MulAdd(gx1, twice, nx1)); Simd.St(ref s, Sty * lanes + h, Simd.MulAdd(gy1, twice, ny1));
+                    Simd.St(ref s, Stz * lanes + h, Simd.MulAdd(gz1, twice, nz1));
+                }
+                // The frame so far, f∘q scaled to unit length (a product of unit quaternions; q is rebuilt from the head every substep).
+                var fInv = Vector.SquareRoot(invF2);
+                Simd.St(ref s, Sqx * lanes + h, Simd.NegMulAdd(fz, qy, Simd.MulAdd(fy, qz, Simd.MulAdd(fx, qw, fw * qx))) * fInv);
+                Simd.St(ref s, Sqy * lanes + h, Simd.MulAdd(fz, qx, Simd.MulAdd(fy, qw, Simd.NegMulAdd(fx, qz, fw * qy))) * fInv);
+                Simd.St(ref s, Sqz * lanes + h, Simd.MulAdd(fz, qw, Simd.NegMulAdd(fy, qx, Simd.MulAdd(fx, qy, fw * qz))) * fInv);
+                Simd.St(ref s, Sqw * lanes + h, Simd.NegMulAdd(fz, qz, Simd.NegMulAdd(fy, qy, Simd.NegMulAdd(fx, qx, fw * qw))) * fInv);
             }
         }
         if (rows < 2) return;
@@ -143,14 +173,27 @@ public sealed partial class FastBendSystem
                 Simd.Ld(ref s, SDx * lanes + h), Simd.Ld(ref s, SDy * lanes + h), Simd.Ld(ref s, SDz * lanes + h), zero, zero, zero);
     }
 
+    /// <summary>
+    /// v turned by the unit quaternion q: v + 2w(q×v) + 2q×(q×v), as v + w·c + q×c with c = 2q×v (the doubling by adds).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Turn(V qx, V qy, V qz, V qw, V rx, V ry, V rz, out V tx, out V ty, out V tz)
+    {
+        var q2x = qx + qx; var q2y = qy + qy; var q2z = qz + qz;
+        var cx = Simd.MulSub(q2y, rz, q2z * ry); var cy = Simd.MulSub(q2z, rx, q2x * rz); var cz = Simd.MulSub(q2x, ry, q2y * rx);
+        tx = Simd.NegMulAdd(qz, cy, Simd.MulAdd(qy, cz, Simd.MulAdd(qw, cx, rx))); ty = Simd.NegMulAdd(qx, cz, Simd.MulAdd(qz, cx, Simd.MulAdd(qw, cy, ry)));
+        tz = Simd.NegMulAdd(qy, cx, Simd.MulAdd(qx, cy, Simd.MulAdd(qw, cz, rz)));
+    }
+
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r, then clamped to the speed limit (the sweep writes velocities last).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Kick(ref float d, in SweepParams p, in Consts c, int r, Vector<int> free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
         var vx = Simd.Ld(ref d, p.Ovx + r); var vy = Simd.Ld(ref d, p.Ovy + r); var vz = Simd.Ld(ref d, p.Ovz + r);
-        var wx = vx + (dx - c.Reaction * nx) * c.InvH; var wy = vy + (dy - c.Reaction * ny) * c.InvH; var wz = vz + (dz - c.Reaction * nz) * c.InvH;
+        var wx = Simd.MulAdd(Simd.NegMulAdd(c.Reaction, nx, dx), c.InvH, vx); var wy = Simd.MulAdd(Simd.NegMulAdd(c.Reaction, ny, dy), c.InvH, vy);
+        var wz = Simd.MulAdd(Simd.NegMulAdd(c.Reaction, nz, dz), c.InvH, vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
-        var speedSq = wx * wx + wy * wy + wz * wz;
+        var speedSq = Simd.MulAdd(wz, wz, Simd.MulAdd(wy, wy, wx * wx));
         var over = Vector.GreaterThan(speedSq, c.MaxSpeedSq);
         if (!Vector.EqualsAll(over, Vector<int>.Zero))
         {

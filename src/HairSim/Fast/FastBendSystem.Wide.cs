@@ -16,10 +16,11 @@ public sealed partial class FastBendSystem
     /// <summary>Sweep constants broadcast to 16 lanes.</summary>
     private readonly struct Consts16
     {
-        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed, MaxSpeedSq;
+        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed, MaxSpeedSq, Tiny;
 
         public Consts16(in SweepParams p)
         {
+            Tiny = Vector512.Create(1e-30f);
             H = Vector512.Create(p.H); InvH = Vector512.Create(p.InvH); Reaction = Vector512.Create(p.Reaction); MaxSpeed = Vector512.Create(p.MaxSpeed); MaxSpeedSq = Vector512.Create(p.MaxSpeed * p.MaxSpeed);
             FallX = Vector512.Create(p.FallX); FallY = Vector512.Create(p.FallY); FallZ = Vector512.Create(p.FallZ);
             Eps = Vector512.Create(1e-6f); Flip = Vector512.Create(-0.9999f);
@@ -41,32 +42,42 @@ public sealed partial class FastBendSystem
             St16(ref s, Sqx * lanes + h, Vector512.Create(p.Qx)); St16(ref s, Sqy * lanes + h, Vector512.Create(p.Qy));
             St16(ref s, Sqz * lanes + h, Vector512.Create(p.Qz)); St16(ref s, Sqw * lanes + h, Vector512.Create(p.Qw));
             // Direction, turn and correction start at zero. The root is never kicked: it follows the head.
-            for (int slot = Sdx; slot < Slots; slot++) St16(ref s, slot * lanes + h, zero);
+            for (int slot = Sdx; slot < Stx; slot++) St16(ref s, slot * lanes + h, zero);
+            if (rows < 2) continue;
+            // Segment 1's target: its rest direction turned by the head.
+            Turn16(Vector512.Create(p.Qx), Vector512.Create(p.Qy), Vector512.Create(p.Qz), Vector512.Create(p.Qw),
+                Ld16(ref rest, p.Orx + lanes + h), Ld16(ref rest, p.Ory + lanes + h), Ld16(ref rest, p.Orz + lanes + h), out var tx1, out var ty1, out var tz1);
+            St16(ref s, Stx * lanes + h, tx1); St16(ref s, Sty * lanes + h, ty1); St16(ref s, Stz * lanes + h, tz1);
         }
         for (int k = 1; k < rows; k++)
         {
             for (int h = 0; h < lanes; h += width)
             {
                 int r = k * lanes + h;
-                var qx = Ld16(ref s, Sqx * lanes + h); var qy = Ld16(ref s, Sqy * lanes + h); var qz = Ld16(ref s, Sqz * lanes + h); var qw = Ld16(ref s, Sqw * lanes + h);
                 var px = Ld16(ref d, p.Ox + r - lanes); var py = Ld16(ref d, p.Oy + r - lanes); var pz = Ld16(ref d, p.Oz + r - lanes);
                 var x = Ld16(ref d, p.Ox + r); var y = Ld16(ref d, p.Oy + r); var z = Ld16(ref d, p.Oz + r);
                 var free = ~Vector512.Equals(Ld16(ref d, p.Om + r), zero);
                 var rl = Ld16(ref d, p.Ol + r);
                 var rx = Ld16(ref rest, p.Orx + r); var ry = Ld16(ref rest, p.Ory + r); var rz = Ld16(ref rest, p.Orz + r);
                 var ex = x - px; var ey = y - py; var ez = z - pz;
-                var len = Vector512.Sqrt(ex * ex + ey * ey + ez * ez);
+                var len2 = Fma(ez, ez, Fma(ey, ey, ex * ex));
+                var len = Vector512.Sqrt(len2);
                 var hasLen = Vector512.GreaterThan(len, zero);
                 // Masks that are all set (the common case: every lane a live, moving, non-degenerate segment) make
                 // their selects identities, so those are skipped: the same bits with fewer operations.
                 bool allLen = AllSet(hasLen);
-                var inv = allLen ? one / len : Sel16(hasLen, one / Sel16(hasLen, len, one), zero);
+                // 1/len as len/len² where every lane's len² is far from underflow: the root and the division run side
+                // by side instead of one after the other (the row's new position waits on this, and on |m| below).
+                // 1/len as len/len² where len² is far from underflow: the root and the division run side by side
+                // instead of one after the other (the row's new position waits on them, and on |m| below).
+                var clear = Vector512.GreaterThan(len2, c.Tiny);
+                bool allClear = AllSet(clear);
+                var inv2 = one / len2;
+                var inv = allClear ? len * inv2 : Sel16(clear, len * inv2, Sel16(hasLen, one / Sel16(hasLen, len, one), zero));
                 var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
-                // Target: the rest direction turned by the frame carried from the root (v' = v + 2w(q×v) + 2q×(q×v)).
-                // With c = 2q×v (the doubling by adds: the sweep is bound by its multiplies): v' = v + w·c + q×c.
-                var q2x = qx + qx; var q2y = qy + qy; var q2z = qz + qz;
-                var cx = q2y * rz - q2z * ry; var cy = q2z * rx - q2x * rz; var cz = q2x * ry - q2y * rx;
-                var tx = rx + qw * cx + (qy * cz - qz * cy); var ty = ry + qw * cy + (qz * cx - qx * cz); var tz = rz + qw * cz + (qx * cy - qy * cx);
+                // Target: the rest direction turned by the frame carried from the root, worked out at the end of the
+                // row above (see below).
+                var tx = Ld16(ref s, Stx * lanes + h); var ty = Ld16(ref s, Sty * lanes + h); var tz = Ld16(ref s, Stz * lanes + h);
                 // A rest direction to turn (any component non-zero, by bits: no multiplies).
                 var restOk = ~Vector512.Equals((rx.AsUInt32() | ry.AsUInt32() | rz.AsUInt32()) & Vector512.Create(0x7fffffffu), Vector512<uint>.Zero).AsSingle();
                 if (!AllSet(restOk))
@@ -79,38 +90,45 @@ public sealed partial class FastBendSystem
                 V dx = ux0, dy = uy0, dz = uz0;
                 if (!AllSet(okLen)) { dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz); }
                 // How far this segment turned since the substep's start (see BendSystem).
-                var hvx = c.H * Ld16(ref d, p.Ovx + r); var hvy = c.H * Ld16(ref d, p.Ovy + r); var hvz = c.H * Ld16(ref d, p.Ovz + r);
-                var ux = hvx - (c.H * Ld16(ref d, p.Ovx + r - lanes) + Ld16(ref s, SDx * lanes + h));
-                var uy = hvy - (c.H * Ld16(ref d, p.Ovy + r - lanes) + Ld16(ref s, SDy * lanes + h));
-                var uz = hvz - (c.H * Ld16(ref d, p.Ovz + r - lanes) + Ld16(ref s, SDz * lanes + h));
-                var along = ux * dx + uy * dy + uz * dz;
-                var tcx = (ux - along * dx) * inv; var tcy = (uy - along * dy) * inv; var tcz = (uz - along * dz) * inv;
+                var ux = Fms(c.H, Ld16(ref d, p.Ovx + r), Fma(c.H, Ld16(ref d, p.Ovx + r - lanes), Ld16(ref s, SDx * lanes + h)));
+                var uy = Fms(c.H, Ld16(ref d, p.Ovy + r), Fma(c.H, Ld16(ref d, p.Ovy + r - lanes), Ld16(ref s, SDy * lanes + h)));
+                var uz = Fms(c.H, Ld16(ref d, p.Ovz + r), Fma(c.H, Ld16(ref d, p.Ovz + r - lanes), Ld16(ref s, SDz * lanes + h)));
+                // Where d = e/len: (u − (u·d)d)/len = (u − (u·e)/len² e)/len, whose u·e does not wait for the root.
+                var ue = Fma(uz, ez, Fma(uy, ey, ux * ex)) * inv2;
+                var tcx = Fnma(ue, ex, ux) * inv; var tcy = Fnma(ue, ey, uy) * inv; var tcz = Fnma(ue, ez, uz) * inv;
+                var byE = clear & okLen;
+                if (!AllSet(byE))
+                {
+                    var al = Fma(uz, dz, Fma(uy, dy, ux * dx));
+                    tcx = Sel16(byE, tcx, Fnma(al, dx, ux) * inv); tcy = Sel16(byE, tcy, Fnma(al, dy, uy) * inv); tcz = Sel16(byE, tcz, Fnma(al, dz, uz) * inv);
+                }
                 // Target turned with the parent: Δt = (d_p × c_p) × t.
                 var pdx = Ld16(ref s, Sdx * lanes + h); var pdy = Ld16(ref s, Sdy * lanes + h); var pdz = Ld16(ref s, Sdz * lanes + h);
                 var pcx = Ld16(ref s, Scx * lanes + h); var pcy = Ld16(ref s, Scy * lanes + h); var pcz = Ld16(ref s, Scz * lanes + h);
-                var wx = pdy * pcz - pdz * pcy; var wy = pdz * pcx - pdx * pcz; var wz = pdx * pcy - pdy * pcx;
-                var ttx = wy * tz - wz * ty; var tty = wz * tx - wx * tz; var ttz = wx * ty - wy * tx;
+                var wx = Fms(pdy, pcz, pdz * pcy); var wy = Fms(pdz, pcx, pdx * pcz); var wz = Fms(pdx, pcy, pdy * pcx);
+                var ttx = Fms(wy, tz, wz * ty); var tty = Fms(wz, tx, wx * tz); var ttz = Fms(wx, ty, wy * tx);
                 // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
                 var a = Ld16(ref rest, p.Oa + r); var b = Ld16(ref rest, p.Ob + r);
                 var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
                 var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
-                var mx = tx + a * ox + b * sx; var my = ty + a * oy + b * sy; var mz = tz + a * oz + b * sz;
-                var ml = Vector512.Sqrt(mx * mx + my * my + mz * mz);
+                var mx = Fma(b, sx, Fma(a, ox, tx)); var my = Fma(b, sy, Fma(a, oy, ty)); var mz = Fma(b, sz, Fma(a, oz, tz));
+                var m2 = Fma(mz, mz, Fma(my, my, mx * mx));
+                var ml = Vector512.Sqrt(m2);
                 var mOk = Vector512.GreaterThan(ml, c.Eps);
                 bool allFree = AllSet(free);
                 if (AllSet(mOk))
                 {
-                    var invM = one / ml;
+                    var invM = ml * (one / m2);
                     if (allFree) { dx = mx * invM; dy = my * invM; dz = mz * invM; }
                     else { dx = Sel16(free, mx * invM, dx); dy = Sel16(free, my * invM, dy); dz = Sel16(free, mz * invM, dz); }
                 }
                 else
                 {
-                    var invM = one / Sel16(mOk, ml, one);
+                    var invM = ml * (one / Sel16(mOk, m2, one));
                     var ndx = Sel16(mOk, mx * invM, tx); var ndy = Sel16(mOk, my * invM, ty); var ndz = Sel16(mOk, mz * invM, tz);
                     dx = Sel16(free, ndx, dx); dy = Sel16(free, ndy, dy); dz = Sel16(free, ndz, dz);
                 }
-                var nx = px + dx * rl; var ny = py + dy * rl; var nz = pz + dz * rl;
+                var nx = Fma(dx, rl, px); var ny = Fma(dy, rl, py); var nz = Fma(dz, rl, pz);
                 V cdx = nx - x, cdy = ny - y, cdz = nz - z;
                 if (!allFree) { cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
                 x += cdx; y += cdy; z += cdz;
@@ -123,25 +141,43 @@ public sealed partial class FastBendSystem
                 St16(ref s, SDx * lanes + h, cdx); St16(ref s, SDy * lanes + h, cdy); St16(ref s, SDz * lanes + h, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
-                along = ux * dx + uy * dy + uz * dz;
-                St16(ref s, Scx * lanes + h, (ux - along * dx) * inv); St16(ref s, Scy * lanes + h, (uy - along * dy) * inv);
-                St16(ref s, Scz * lanes + h, (uz - along * dz) * inv);
+                var along = Fma(uz, dz, Fma(uy, dy, ux * dx));
+                St16(ref s, Scx * lanes + h, Fnma(along, dx, ux) * inv); St16(ref s, Scy * lanes + h, Fnma(along, dy, uy) * inv);
+                St16(ref s, Scz * lanes + h, Fnma(along, dz, uz) * inv);
                 St16(ref s, Sdx * lanes + h, dx); St16(ref s, Sdy * lanes + h, dy); St16(ref s, Sdz * lanes + h, dz);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
-                var dot = tx * dx + ty * dy + tz * dz;
-                var fx = ty * dz - tz * dy; var fy = tz * dx - tx * dz; var fz = tx * dy - ty * dx; var fw = one + dot;
-                var flip = Vector512.LessThan(dot, c.Flip);
+                // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised: the
+                // next target is this row's rest-turned target t̃ = q r_{k+1} q* turned by f as f t̃ f*/|f|², which needs
+                // no square root (the root that scales f∘q to unit length is off the row-to-row chain).
+                V gx = dx, gy = dy, gz = dz, gl = one;
+                if (allFree && AllSet(mOk)) { gx = mx; gy = my; gz = mz; gl = ml; }
+                else
+                {
+                    var byM = free & mOk;
+                    gx = Sel16(byM, mx, dx); gy = Sel16(byM, my, dy); gz = Sel16(byM, mz, dz); gl = Sel16(byM, ml, one);
+                }
+                var dot = Fma(tz, gz, Fma(ty, gy, tx * gx));
+                var fx = Fms(ty, gz, tz * gy); var fy = Fms(tz, gx, tx * gz); var fz = Fms(tx, gy, ty * gx); var fw = gl + dot;
+                var flip = Vector512.LessThan(dot, c.Flip * gl);
                 if (flip != V.Zero) { fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw); }
-                // f normalised by its own length (not 2(1 + t·d), which amplifies any error in |t| near a flip), and
-                // f∘q left as it is: a product of unit quaternions, and q is rebuilt from the head every substep.
-                var fInv = one / Vector512.Sqrt(fx * fx + fy * fy + fz * fz + fw * fw);
-                fx *= fInv; fy *= fInv; fz *= fInv; fw *= fInv;
-                var nqx = fw * qx + fx * qw + fy * qz - fz * qy;
-                var nqy = fw * qy - fx * qz + fy * qw + fz * qx;
-                var nqz = fw * qz + fx * qy - fy * qx + fz * qw;
-                var nqw = fw * qw - fx * qx - fy * qy - fz * qz;
-                St16(ref s, Sqx * lanes + h, nqx); St16(ref s, Sqy * lanes + h, nqy);
-                St16(ref s, Sqz * lanes + h, nqz); St16(ref s, Sqw * lanes + h, nqw);
+                var invF2 = one / Fma(fw, fw, Fma(fz, fz, Fma(fy, fy, fx * fx)));
+                var qx = Ld16(ref s, Sqx * lanes + h); var qy = Ld16(ref s, Sqy * lanes + h); var qz = Ld16(ref s, Sqz * lanes + h); var qw = Ld16(ref s, Sqw * lanes + h);
+                if (k + 1 < rows)
+                {
+                    int rn = r + lanes;
+                    Turn16(qx, qy, qz, qw, Ld16(ref rest, p.Orx + rn), Ld16(ref rest, p.Ory + rn), Ld16(ref rest, p.Orz + rn), out var nx1, out var ny1, out var nz1);
+                    // f v f*/|f|² = v + (2/|f|²)(w (f×v) + f×(f×v)).
+                    var ex1 = Fms(fy, nz1, fz * ny1); var ey1 = Fms(fz, nx1, fx * nz1); var ez1 = Fms(fx, ny1, fy * nx1);
+                    var gx1 = Fms(fy, ez1, Fnma(fw, ex1, fz * ey1)); var gy1 = Fms(fz, ex1, Fnma(fw, ey1, fx * ez1)); var gz1 = Fms(fx, ey1, Fnma(fw, ez1, fy * ex1));
+                    var twice = invF2 + invF2;
+                    St16(ref s, Stx * lanes + h, Fma(gx1, twice, nx1)); St16(ref s, Sty * lanes + h, Fma(gy1, twice, ny1)); St16(ref s, Stz * lanes + h, Fma(gz1, twice, nz1));
+                }
+                // The frame so far, f∘q scaled to unit length (a product of unit quaternions; q is rebuilt from the head every substep).
+                var fInv = Vector512.Sqrt(invF2);
+                St16(ref s, Sqx * lanes + h, Fnma(fz, qy, Fma(fy, qz, Fma(fx, qw, fw * qx))) * fInv);
+                St16(ref s, Sqy * lanes + h, Fma(fz, qx, Fma(fy, qw, Fnma(fx, qz, fw * qy))) * fInv);
+                St16(ref s, Sqz * lanes + h, Fma(fz, qw, Fnma(fy, qx, Fma(fx, qy, fw * qz))) * fInv);
+                St16(ref s, Sqw * lanes + h, Fnma(fz, qz, Fnma(fy, qy, Fnma(fx, qx, fw * qw))) * fInv);
             }
         }
         if (rows < 2) return;
@@ -150,14 +186,26 @@ public sealed partial class FastBendSystem
                 Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h), zero, zero, zero);
     }
 
+    /// <summary>
+    /// v turned by the unit quaternion q: v + 2w(q×v) + 2q×(q×v), as v + w·c + q×c with c = 2q×v (the doubling by adds).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Turn16(V qx, V qy, V qz, V qw, V rx, V ry, V rz, out V tx, out V ty, out V tz)
+    {
+        var q2x = qx + qx; var q2y = qy + qy; var q2z = qz + qz;
+        var cx = Fms(q2y, rz, q2z * ry); var cy = Fms(q2z, rx, q2x * rz); var cz = Fms(q2x, ry, q2y * rx);
+        tx = Fnma(qz, cy, Fma(qy, cz, Fma(qw, cx, rx))); ty = Fnma(qx, cz, Fma(qz, cx, Fma(qw, cy, ry)));
+        tz = Fnma(qy, cx, Fma(qx, cy, Fma(qw, cz, rz)));
+    }
+
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Kick16(ref float d, in SweepParams p, in Consts16 c, int r, V free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
         var vx = Ld16(ref d, p.Ovx + r); var vy = Ld16(ref d, p.Ovy + r); var vz = Ld16(ref d, p.Ovz + r);
-        var wx = vx + (dx - c.Reaction * nx) * c.InvH; var wy = vy + (dy - c.Reaction * ny) * c.InvH; var wz = vz + (dz - c.Reaction * nz) * c.InvH;
+        var wx = Fma(Fnma(c.Reaction, nx, dx), c.InvH, vx); var wy = Fma(Fnma(c.Reaction, ny, dy), c.InvH, vy); var wz = Fma(Fnma(c.Reaction, nz, dz), c.InvH, vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
-        var speedSq = wx * wx + wy * wy + wz * wz;
+        var speedSq = Fma(wz, wz, Fma(wy, wy, wx * wx));
         var over = Vector512.GreaterThan(speedSq, c.MaxSpeedSq);
         if (over != V.Zero)
         {
@@ -169,6 +217,16 @@ public sealed partial class FastBendSystem
         St16(ref d, p.Ovy + r, wy);
         St16(ref d, p.Ovz + r, wz);
     }
+
+    // a·b + c, c − a·b and a·b − c, each rounded once (Simd.MulAdd): the sweep is bound by its operation count.
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static V Fma(V a, V b, V c) => Simd.MulAdd(a, b, c);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static V Fnma(V a, V b, V c) => Simd.NegMulAdd(a, b, c);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static V Fms(V a, V b, V c) => Simd.MulSub(a, b, c);
 
     /// <summary>Every lane of the mask set.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

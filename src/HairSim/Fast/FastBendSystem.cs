@@ -50,6 +50,9 @@ public sealed partial class FastBendSystem : IHairSystem
         _profileAt = new long[world.StrandCount];
         _profileSag = new float[world.StrandCount];
         _sharesH = new float[world.StrandCount]; _sharesZeta = new float[world.StrandCount];
+        _chunkBend = new float[ChunkBendFields * n];
+        _chunkBlock = new int[world.StrandCount];
+        Array.Fill(_chunkBlock, -1);
     }
 
     /// <summary>Whether this instance sweeps 16-lane vectors.</summary>
@@ -78,6 +81,7 @@ public sealed partial class FastBendSystem : IHairSystem
             _jointA[i] = t2 / den; _jointB[i] = zeta2h * tt / den;
         }
         _sharesH[s] = h; _sharesZeta[s] = zeta;
+        _chunkBlock[s] = -1;
     }
 
     private void FillCache(HairWorld w, int s, float sag)
@@ -95,6 +99,7 @@ public sealed partial class FastBendSystem : IHairSystem
             else _restX[i] = _restY[i] = _restZ[i] = 0f;
         }
         _profileAt[s] = w.EditStamp + 1L; _profileSag[s] = sag;
+        _chunkBlock[s] = -1;
     }
 
     // The stack tile is fully written before it is read (uniform groups by the transposes, others cleared first).

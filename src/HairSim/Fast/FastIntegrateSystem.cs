@@ -54,16 +54,16 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
 
     private readonly struct Kernel : IWideParticleKernel
     {
-        private readonly Vector<float> _h, _gx, _gy, _gz, _keep, _maxSpeed;
-        private readonly Vector512<float> _h16, _gx16, _gy16, _gz16, _keep16, _maxSpeed16;
+        private readonly Vector<float> _h, _gx, _gy, _gz, _keep, _maxSpeed, _maxSpeedSq;
+        private readonly Vector512<float> _h16, _gx16, _gy16, _gz16, _keep16, _maxSpeed16, _maxSpeedSq16;
         private readonly bool _limit;
 
         public Kernel(float h, Vector3 gravityStep, float keep, float maxSpeed)
         {
             _h = new(h); _gx = new(gravityStep.X); _gy = new(gravityStep.Y); _gz = new(gravityStep.Z);
-            _keep = new(keep); _maxSpeed = new(maxSpeed); _limit = maxSpeed > 0f;
+            _keep = new(keep); _maxSpeed = new(maxSpeed); _maxSpeedSq = new(maxSpeed * maxSpeed); _limit = maxSpeed > 0f;
             _h16 = Vector512.Create(h); _gx16 = Vector512.Create(gravityStep.X); _gy16 = Vector512.Create(gravityStep.Y); _gz16 = Vector512.Create(gravityStep.Z);
-            _keep16 = Vector512.Create(keep); _maxSpeed16 = Vector512.Create(maxSpeed);
+            _keep16 = Vector512.Create(keep); _maxSpeed16 = Vector512.Create(maxSpeed); _maxSpeedSq16 = Vector512.Create(maxSpeed * maxSpeed);
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -75,11 +75,12 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
             var x = (ox + _gx) * _keep; var y = (oy + _gy) * _keep; var z = (oz + _gz) * _keep;
             if (_limit)
             {
-                var sp = Vector.SquareRoot(x * x + y * y + z * z);
-                var over = Vector.GreaterThan(sp, _maxSpeed);
+                // Squared speeds compared (as the bend sweep's kick does), the root taken only where a lane is over.
+                var spSq = x * x + y * y + z * z;
+                var over = Vector.GreaterThan(spSq, _maxSpeedSq);
                 if (!Vector.EqualsAll(over, Vector<int>.Zero))
                 {
-                    var f = Simd.Sel(over, _maxSpeed / sp, Vector<float>.One);
+                    var f = Simd.Sel(over, _maxSpeed / Vector.SquareRoot(spSq), Vector<float>.One);
                     x *= f; y *= f; z *= f;
                 }
             }
@@ -102,12 +103,11 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
             var x = (ox + _gx16) * keep; var y = (oy + _gy16) * keep; var z = (oz + _gz16) * keep;
             if (_limit)
             {
-                var max = _maxSpeed16;
-                var sp = Vector512.Sqrt(x * x + y * y + z * z);
-                var over = Vector512.GreaterThan(sp, max);
+                var spSq = x * x + y * y + z * z;
+                var over = Vector512.GreaterThan(spSq, _maxSpeedSq16);
                 if (over != Vector512<float>.Zero)
                 {
-                    var f = Vector512.ConditionalSelect(over, max / sp, Vector512<float>.One);
+                    var f = Vector512.ConditionalSelect(over, _maxSpeed16 / Vector512.Sqrt(spSq), Vector512<float>.One);
                     x *= f; y *= f; z *= f;
                 }
             }

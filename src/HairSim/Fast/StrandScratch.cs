@@ -1,4 +1,6 @@
 using System.Numerics;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 
 namespace HairSim.Fast;
 
@@ -19,16 +21,23 @@ internal readonly ref struct StrandScratch
     public readonly Span<float> Data;
     public readonly int Stride;
 
-    public StrandScratch(Span<float> data, int capacity)
+    public unsafe StrandScratch(Span<float> data, int capacity)
     {
-        Data = data;
-        Stride = capacity + 3 * Vector<float>.Count;
+        // Every field starts on a 64-byte cache line, so no 16-lane load or store of a row splits a line. (A heap
+        // buffer the GC later moves only loses the alignment, not the layout.)
+        int skip = (int)((LineFloats - (((nint)Unsafe.AsPointer(ref MemoryMarshal.GetReference(data)) >> 2) & (LineFloats - 1))) & (LineFloats - 1));
+        Data = data.Slice(skip);
+        Stride = Lined(capacity + 3 * Vector<float>.Count);
     }
 
-    /// <summary>Floats needed for <paramref name="fields"/> slices of <paramref name="capacity"/> elements.</summary>
-    public static int Size(int capacity, int fields) => (capacity + 3 * Vector<float>.Count) * fields;
+    private const int LineFloats = 16;
+    private static int Lined(int n) => (n + LineFloats - 1) / LineFloats * LineFloats;
 
-    public int Offset(int field) => field * Stride + Vector<float>.Count;
+    /// <summary>Floats needed for <paramref name="fields"/> slices of <paramref name="capacity"/> elements.</summary>
+    public static int Size(int capacity, int fields) => Lined(capacity + 3 * Vector<float>.Count) * fields + LineFloats;
+
+    /// <summary>Where field <paramref name="field"/>'s element 0 is: a line in, so the Width elements before it are in the slice too.</summary>
+    public int Offset(int field) => field * Stride + LineFloats;
 
     /// <summary>The per-thread heap buffer for scratch too large for the stack.</summary>
     public static Span<float> Heap(int size)
