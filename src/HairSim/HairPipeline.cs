@@ -22,6 +22,10 @@ public sealed class HairPipeline
     private int _jobCount;
     private readonly NonFiniteContainment _containment;
     private readonly FrameReport _report = new();
+    // Per collider this frame: whether it moves across the substeps (false: it is at its new placement throughout).
+    private bool[] _colliderMoves = [];
+    // The farthest a moved collider's surface travels this frame: the guards' substeps keep it within a head's travel.
+    private float _colliderTravel;
 
     /// <summary>
     /// Particles per substep job: ~8192 particles × the ≈ 44 bytes a substep touches (positions, velocities, masses,
@@ -97,24 +101,63 @@ public sealed class HairPipeline
         if (!teleported)
             foreach (var system in _frameStart)
                 if (system is IFrameSplitter splitter) parts = Math.Max(parts, splitter.PartsOf(_scene, dt, _scale));
-        if (parts <= 1) { StepPart(dt, headTarget, headMove, delta, teleported, requested.Substeps); _containment.Collect(_report); return; }
-        var start = world.Head;
-        int substeps = Math.Max(1, (requested.Substeps + parts - 1) / parts);
-        for (int i = 1; i <= parts; i++)
+        PrepareColliderMotion(teleported, requested);
+        if (parts <= 1) StepPart(dt, headTarget, headMove, delta, teleported, requested.Substeps, 0f, 1f);
+        else
         {
-            var target = i == parts ? headTarget : RigidTransform.Interpolate(start, headTarget, i / (float)parts);
-            StepPart(dt / parts, target, (target.Position - world.Head.Position).Length(), RigidTransform.Delta(world.Head, target), false, substeps);
+            var start = world.Head;
+            int substeps = Math.Max(1, (requested.Substeps + parts - 1) / parts);
+            for (int i = 1; i <= parts; i++)
+            {
+                var target = i == parts ? headTarget : RigidTransform.Interpolate(start, headTarget, i / (float)parts);
+                StepPart(dt / parts, target, (target.Position - world.Head.Position).Length(), RigidTransform.Delta(world.Head, target), false, substeps,
+                    (i - 1) / (float)parts, i == parts ? 1f : i / (float)parts);
+            }
         }
+        _scene.CollidersStepped();
         _containment.Collect(_report);
     }
 
-    private void StepPart(float dt, RigidTransform headTarget, float headMove, RigidTransform delta, bool teleported, int substeps)
+    /// <summary>
+    /// Which colliders were moved since the last frame (<see cref="HairScene.SetCollider"/>) and are carried across the
+    /// substeps; a head teleport, a jump beyond the teleport limits or a change of space places them at once, as a
+    /// teleported head is.
+    /// </summary>
+    private void PrepareColliderMotion(bool teleported, SimulationSettings st)
+    {
+        int nc = _scene.Colliders.Count;
+        if (_colliderMoves.Length < nc) _colliderMoves = new bool[nc];
+        _colliderTravel = 0f;
+        for (int c = 0; c < nc; c++)
+        {
+            var from = _scene.ColliderBefore(c);
+            var to = _scene.Colliders[c];
+            bool moves = !teleported && from.InWorld == to.InWorld && !SamePlacement(from, to);
+            if (moves)
+            {
+                Collider.Motion(from, to, out float distance, out float angle);
+                moves = !(distance > st.TeleportDistance * _scale.Reach || angle > st.TeleportAngle);
+                // A turning ellipsoid's surface moves by the angle × its largest radius; a growing one by the change of size.
+                if (moves)
+                    _colliderTravel = MathF.Max(_colliderTravel, distance + angle * MathF.Max(to.Radii.X, MathF.Max(to.Radii.Y, to.Radii.Z))
+                        + MathF.Abs(to.Radii.X - from.Radii.X) + MathF.Abs(to.Radii.Y - from.Radii.Y) + MathF.Abs(to.Radii.Z - from.Radii.Z));
+            }
+            _colliderMoves[c] = moves;
+        }
+    }
+
+    private static bool SamePlacement(in Collider a, in Collider b) =>
+        a.Center == b.Center && a.End == b.End && a.Radii == b.Radii && a.Rotation == b.Rotation;
+
+    /// <param name="from">How far into the frame this part starts (0 … 1), for the colliders' motion.</param>
+    /// <param name="to">How far into the frame it ends (1: the frame's end).</param>
+    private void StepPart(float dt, RigidTransform headTarget, float headMove, RigidTransform delta, bool teleported, int substeps, float from, float to)
     {
         var world = _scene.World;
         var ctx = _ctx;
         var requested = _scene.Settings;
         // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
-        StabilityGuards.Apply(requested, _guarded, dt, headMove, delta.Angle, teleported, _scale, substeps);
+        StabilityGuards.Apply(requested, _guarded, dt, MathF.Max(headMove, _colliderTravel * (to - from)), delta.Angle, teleported, _scale, substeps);
         var st = _guarded;
         ctx.Settings = st;
         ctx.Dt = dt;
@@ -137,8 +180,15 @@ public sealed class HairPipeline
         if (ctx.SubstepColliders.Length < nc * st.Substeps) ctx.SubstepColliders = new Collider[nc * st.Substeps];
         ctx.ColliderCount = nc;
         for (int s = 0; s < st.Substeps; s++)
+        {
+            // A moved collider goes the same share of its way as the head does of its own (exact at the frame's end).
+            float f = s == st.Substeps - 1 ? to : from + (to - from) * ((s + 1) / (float)st.Substeps);
             for (int c = 0; c < nc; c++)
-                ctx.SubstepColliders[s * nc + c] = colliders[c].ToWorld(ctx.SubstepHeads[s]);
+            {
+                var placed = _colliderMoves[c] ? Collider.Interpolate(_scene.ColliderBefore(c), colliders[c], f) : colliders[c];
+                ctx.SubstepColliders[s * nc + c] = placed.ToWorld(ctx.SubstepHeads[s]);
+            }
+        }
 
         // Systems that couple strands (volume) see the state the last frame left and change velocities before any substep.
         for (int k = 0; k < _frameStart.Length; k++)

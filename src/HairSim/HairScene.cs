@@ -7,6 +7,10 @@ namespace HairSim;
 public sealed class HairScene
 {
     private readonly List<Collider> _colliders = new();
+    // Each collider's placement at the end of the last stepped frame: the pipeline moves it from there across the substeps.
+    private readonly List<Collider> _collidersBefore = new();
+    private float _longestRest;
+    private int _longestRestStamp = -1;
     private readonly Dictionary<Type, object> _components = new();
     private RenderSettings? _render;
 
@@ -34,9 +38,60 @@ public sealed class HairScene
     /// <summary>Bumped whenever the scene's contents change, so the pipeline knows to rebuild.</summary>
     public int Revision { get; private set; }
 
-    public void AddCollider(Collider c) { _colliders.Add(c); Revision++; }
-    public void RemoveColliderAt(int index) { _colliders.RemoveAt(index); Revision++; }
-    public void ClearColliders() { _colliders.Clear(); Revision++; }
+    /// <summary>Adds a collider (rebuilds the pipeline). A value not made by a <see cref="Collider"/> factory (<c>default</c>) is refused.</summary>
+    public void AddCollider(Collider c)
+    {
+        if (!c.IsValid()) throw new ArgumentException("Make colliders with Collider.Ellipsoid, Sphere, Capsule or Plane.", nameof(c));
+        _colliders.Add(c); _collidersBefore.Add(c); Revision++;
+    }
+
+    public void RemoveColliderAt(int index) { _colliders.RemoveAt(index); _collidersBefore.RemoveAt(index); Revision++; }
+    public void ClearColliders() { _colliders.Clear(); _collidersBefore.Clear(); Revision++; }
+
+    /// <summary>
+    /// Moves collider <paramref name="index"/> to <paramref name="c"/>'s placement (and size) without rebuilding the pipeline:
+    /// call it every frame for a collider on a bone (a shoulder capsule of a skinned body). The next frame carries it from
+    /// where the last frame left it to here across its substeps, as the head is carried, so a fast collider sweeps
+    /// the hair instead of jumping into it; a move beyond the teleport limits (<see cref="SimulationSettings.TeleportDistance"/>
+    /// × the hair's reach, <see cref="SimulationSettings.TeleportAngle"/>), a head teleport or a change between head and
+    /// world space places it at once. The kind must stay (remove and add to change it); a bad index or a value not made
+    /// by a factory is refused (ArgumentException, nothing changed). Allocates nothing; <see cref="Revision"/> moves only
+    /// when a sphere or capsule becomes thinner or thicker than the longest segment (the segment test joins or leaves).
+    /// Not while a step runs on another thread.
+    /// </summary>
+    public void SetCollider(int index, Collider c)
+    {
+        if ((uint)index >= (uint)_colliders.Count)
+            throw new ArgumentOutOfRangeException(nameof(index), index, $"Collider index must be in [0, {_colliders.Count}).");
+        if (!c.IsValid()) throw new ArgumentException("Make colliders with Collider.Ellipsoid, Sphere, Capsule or Plane.", nameof(c));
+        var old = _colliders[index];
+        if (old.Kind != c.Kind)
+            throw new ArgumentException($"Collider {index} is a {old.Kind}, not a {c.Kind}: remove it and add the new one.", nameof(c));
+        _colliders[index] = c;
+        if (old.Radius != c.Radius && IsThin(old) != IsThin(c)) Revision++;
+    }
+
+    /// <summary>Where collider c was at the end of the last stepped frame (its start placement for the next).</summary>
+    internal Collider ColliderBefore(int index) => _collidersBefore[index];
+
+    /// <summary>A frame has been stepped: the colliders' placements are its end and the next frame's start.</summary>
+    internal void CollidersStepped()
+    {
+        for (int c = 0; c < _colliders.Count; c++) _collidersBefore[c] = _colliders[c];
+    }
+
+    /// <summary>Whether the segment test handles this collider (<see cref="SegmentCollideSystem.Needed"/>): a sphere or capsule thinner than the longest segment.</summary>
+    private bool IsThin(in Collider c)
+    {
+        if (c.Kind is not (ColliderKind.Sphere or ColliderKind.Capsule)) return false;
+        if (_longestRestStamp != World.EditStamp)
+        {
+            float longest = 0f;
+            foreach (float l in World.RestLength) longest = MathF.Max(longest, l);
+            _longestRest = longest; _longestRestStamp = World.EditStamp;
+        }
+        return c.Radius < _longestRest;
+    }
 
     /// <summary>Call after changing <see cref="Settings"/> so the pipeline is rebuilt with them (validated first).</summary>
     public void SettingsChanged() { Settings.Validate(); Revision++; }

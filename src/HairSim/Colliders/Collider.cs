@@ -164,6 +164,56 @@ public readonly struct Collider
         return true;
     }
 
+    /// <summary>
+    /// Whether this value could have come from a factory: finite, in range, positive sizes, a unit rotation, a unit
+    /// plane normal. False for <c>default(Collider)</c> (an ellipsoid with zero radii), which no factory makes.
+    /// </summary>
+    internal bool IsValid()
+    {
+        if (!Enum.IsDefined(Kind) || !HairWorld.InRange(Center) || !HairWorld.InRange(End) || !HairWorld.InRange(Radii)) return false;
+        if (!(MathF.Abs(Rotation.Length() - 1f) < 1e-3f)) return false;
+        return Kind switch
+        {
+            ColliderKind.Ellipsoid => Radii.X > 1e-6f && Radii.Y > 1e-6f && Radii.Z > 1e-6f,
+            ColliderKind.Plane => MathF.Abs(End.Length() - 1f) < 1e-3f,
+            _ => Radii.X > 0f,
+        };
+    }
+
+    /// <summary>
+    /// The placement a fraction t of the way from a to b (same kind): ends, centre and sizes lerped, rotation slerped, a
+    /// plane's normal lerped and normalised. t ≥ 1 gives b exactly. Used per substep for a collider moved between frames.
+    /// </summary>
+    internal static Collider Interpolate(in Collider a, in Collider b, float t)
+    {
+        if (t >= 1f) return b;
+        var center = Vector3.Lerp(a.Center, b.Center, t);
+        var end = Vector3.Lerp(a.End, b.End, t);
+        if (b.Kind == ColliderKind.Plane)
+        {
+            float len = end.Length();
+            if (!(len > 1e-3f)) return b; // opposite normals: no way between them, so the new one
+            end /= len;
+        }
+        var rotation = b.Kind == ColliderKind.Ellipsoid ? Quaternion.Normalize(Quaternion.Slerp(a.Rotation, b.Rotation, t)) : b.Rotation;
+        return new Collider(b.Kind, center, end, Vector3.Lerp(a.Radii, b.Radii, t), rotation, b.InWorld);
+    }
+
+    /// <summary>How far a point of the collider moved from a to b (the larger of the two ends; a plane: its point), and the angle it turned (radians).</summary>
+    internal static void Motion(in Collider a, in Collider b, out float distance, out float angle)
+    {
+        distance = Vector3.Distance(a.Center, b.Center);
+        angle = 0f;
+        if (b.Kind == ColliderKind.Plane)
+            angle = MathF.Acos(Math.Clamp(Vector3.Dot(a.End, b.End), -1f, 1f));
+        else
+        {
+            if (b.Kind == ColliderKind.Capsule) distance = MathF.Max(distance, Vector3.Distance(a.End, b.End));
+            if (b.Kind == ColliderKind.Ellipsoid)
+                angle = new RigidTransform(Vector3.Zero, Quaternion.Normalize(b.Rotation * Quaternion.Conjugate(a.Rotation))).Angle;
+        }
+    }
+
     /// <summary>How deep p is inside (0 if outside), measured to the point Resolve would move it to.</summary>
     public float Penetration(Vector3 p) => Resolve(p, out _, out _, out float d) ? d : 0f;
 }
