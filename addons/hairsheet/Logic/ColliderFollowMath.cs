@@ -64,5 +64,37 @@ public static class ColliderFollowMath
         return string.IsNullOrEmpty(bone) ? followNode : followNode + ":" + bone;
     }
 
+    /// <summary>
+    /// Where a primitive collider node sits relative to the frame it follows: its global transform in that frame (its
+    /// scale kept: it sizes the collider as a head collider's does). Taken in the editor, stored with the node.
+    /// </summary>
+    public static Matrix4x4 OffsetIn(in Matrix4x4 colliderGlobal, in RigidTransform frame) => colliderGlobal * Inverse(frame);
+
+    /// <summary>
+    /// A primitive collider that follows <paramref name="frame"/> (a bone's or node's rigid frame, <see cref="TryFrame"/>):
+    /// its offset carried by the frame, as a world-space collider (<see cref="Collider.InWorldSpace"/>), sized by the
+    /// offset's scale as <see cref="HeadPoseMath"/> sizes head colliders. Throws ArgumentException for a degenerate
+    /// offset or size (checked when the hair node gathers its colliders; the frame itself is rigid). Allocates nothing.
+    /// </summary>
+    public static Collider Place(in PrimitiveShape shape, in Matrix4x4 offset, in RigidTransform frame)
+    {
+        var m = offset * frame.ToMatrix();
+        var x = new Vector3(m.M11, m.M12, m.M13);
+        var y = new Vector3(m.M21, m.M22, m.M23);
+        var z = new Vector3(m.M31, m.M32, m.M33);
+        var t = new Vector3(m.M41, m.M42, m.M43);
+        var placed = shape.Kind switch
+        {
+            ColliderKind.Sphere => HeadPoseMath.Sphere(x, y, z, t, shape.Size.X),
+            ColliderKind.Capsule => HeadPoseMath.Capsule(x, y, z, t, shape.Size.X, shape.Size.Y),
+            ColliderKind.Ellipsoid => HeadPoseMath.Ellipsoid(x, y, z, t, shape.Size),
+            _ => throw new ArgumentException($"A {shape.Kind} collider cannot follow a bone.", nameof(shape)),
+        };
+        return placed.InWorldSpace();
+    }
+
     private static bool Finite(Vector3 v) => float.IsFinite(v.X) && float.IsFinite(v.Y) && float.IsFinite(v.Z);
 }
+
+/// <summary>A collider node's shape: a sphere (Size.X = radius), a capsule along local Y (X = radius, Y = half height) or an ellipsoid (Size = radii).</summary>
+public readonly record struct PrimitiveShape(ColliderKind Kind, Vector3 Size);
