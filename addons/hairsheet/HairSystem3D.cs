@@ -95,6 +95,9 @@ public partial class HairSystem3D : Node3D
     private string? _headProblem;
     // The mesh collider node whose field follows a node or bone in world space: placed before every step.
     private HairMeshCollider3D? _followingField;
+    // Primitive collider nodes that follow a node or bone, and their indices in the scene's colliders: moved before every step.
+    private IHairFollowingCollider[] _followers = [];
+    private int[] _followerIndices = [];
 
     // ---- Groom ----
     /// <summary>A saved groom (overrides the Groom numbers below when set).</summary>
@@ -258,7 +261,7 @@ public partial class HairSystem3D : Node3D
             Draw();
             if (steps > 0)
             {
-                PlaceFollowingField(); // between the steps: the worker reads the placement
+                PlaceFollowingColliders(); // between the steps: the worker reads the placement
                 _stepper.Start((float)_clock.Step, steps, HeadPose());
             }
             return;
@@ -266,7 +269,7 @@ public partial class HairSystem3D : Node3D
         if (steps == 0) return;
         _stepTimer.Restart();
         var head = HeadPose();
-        PlaceFollowingField();
+        PlaceFollowingColliders();
         float dt = (float)_clock.Step;
         for (int i = 0; i < steps; i++) _simulation.Step(dt, head);
         LastStepMilliseconds = _stepTimer.Elapsed.TotalMilliseconds;
@@ -672,13 +675,23 @@ public partial class HairSystem3D : Node3D
     {
         _collidersDirty = false;
         var list = new List<Collider>();
+        var followers = new List<(IHairFollowingCollider Node, int Index)>();
         try
         {
             if (_useHeadEllipsoid && _groom != null) list.Add(Collider.Ellipsoid(_groom.HeadCenter, _groom.HeadRadii));
             var headInverse = HeadTransform().AffineInverse();
             foreach (var child in GetChildren())
-                if (child is IHairColliderNode c && child is Node3D n && n.Visible)
-                    list.Add(c.ToCollider(headInverse * n.GlobalTransform));
+            {
+                if (child is not IHairColliderNode c || child is not Node3D n || !n.Visible) continue;
+                if (c is IHairFollowingCollider f && f.Follows)
+                {
+                    // World space, where its frame is now; a frame that cannot be read leaves it out (the node says why).
+                    if (!f.TryPlace(out var placed)) continue;
+                    followers.Add((f, list.Count));
+                    list.Add(placed);
+                }
+                else list.Add(c.ToCollider(headInverse * n.GlobalTransform));
+            }
         }
         catch (ArgumentException e)
         {
@@ -687,6 +700,8 @@ public partial class HairSystem3D : Node3D
         }
         scene.ClearColliders();
         foreach (var c in list) scene.AddCollider(c);
+        _followers = followers.Select(x => x.Node).ToArray();
+        _followerIndices = followers.Select(x => x.Index).ToArray();
         // A mesh collider (HairMeshCollider3D with a baked field) joins as a scene component; the pipeline adds its system.
         // The library takes one per scene: the first visible one with a usable field; any other is told it is ignored.
         // Hair grown on a scalp mesh collides with that mesh's field.
@@ -709,10 +724,18 @@ public partial class HairSystem3D : Node3D
     private const string OneMeshCollider = "A hair node collides with one mesh: another HairMeshCollider3D before this one is used, this one is ignored.";
     private const string ScalpTakesTheMeshCollider = "A hair node collides with one mesh: the hair grows on its Scalp Mesh and collides with that, this one is ignored.";
 
-    /// <summary>Sets a followed field's world placement from its node or bone now (before the steps; allocates nothing).</summary>
-    private void PlaceFollowingField()
+    /// <summary>Places the colliders that follow a node or bone (fields and primitives) where their frames are now (before the steps; allocates nothing).</summary>
+    private void PlaceFollowingColliders()
     {
         if (_followingField != null && IsInstanceValid(_followingField)) _followingField.PlaceField();
+        // Following primitives move without a rebuild; the library carries them across the substeps from the last frame's place.
+        if (_scene == null) return;
+        for (int i = 0; i < _followers.Length; i++)
+        {
+            if (_followers[i] is not GodotObject node || !IsInstanceValid(node) || !_followers[i].TryPlace(out var collider)) continue;
+            try { _scene.SetCollider(_followerIndices[i], collider); }
+            catch (ArgumentException e) { GD.PushError($"{Name}: {e.Message}"); }
+        }
     }
 
     private void Draw()
