@@ -12,6 +12,9 @@ public sealed class HairScene
     private float _longestRest;
     private int _longestRestStamp = -1;
     private readonly Dictionary<Type, object> _components = new();
+    // Mesh colliders added with AddMeshCollider, and every mesh collider the pipeline collides with (a new array on each change).
+    private readonly List<Meshes.MeshCollider> _meshes = new();
+    private Meshes.MeshCollider[] _allMeshes = [];
     private RenderSettings? _render;
 
     public HairScene(HairWorld world, SimulationSettings? settings = null)
@@ -96,8 +99,68 @@ public sealed class HairScene
     /// <summary>Call after changing <see cref="Settings"/> so the pipeline is rebuilt with them (validated first).</summary>
     public void SettingsChanged() { Settings.Validate(); Revision++; }
 
-    public void SetComponent<T>(T component) where T : class { _components[typeof(T)] = component; Revision++; }
-    public bool RemoveComponent<T>() where T : class { bool r = _components.Remove(typeof(T)); if (r) Revision++; return r; }
+    public void SetComponent<T>(T component) where T : class
+    {
+        _components[typeof(T)] = component;
+        if (typeof(T) == typeof(Meshes.MeshCollider)) MeshesChanged();
+        Revision++;
+    }
+
+    public bool RemoveComponent<T>() where T : class
+    {
+        bool r = _components.Remove(typeof(T));
+        if (r && typeof(T) == typeof(Meshes.MeshCollider)) MeshesChanged();
+        if (r) Revision++;
+        return r;
+    }
+
+    /// <summary>
+    /// Every mesh the hair collides with, in the order they act: the one set as a component
+    /// (<c>SetComponent(new MeshCollider(…))</c>, e.g. the scalp's head mesh) first, then those added with
+    /// <see cref="AddMeshCollider"/> (a body, a prop), each with its own placement and space.
+    /// </summary>
+    public IReadOnlyList<Meshes.MeshCollider> MeshColliders => _allMeshes;
+
+    /// <summary>The same, as the array the systems read (replaced, never changed, when the list changes).</summary>
+    internal Meshes.MeshCollider[] MeshColliderArray => _allMeshes;
+
+    /// <summary>Adds a mesh collider beside any others (rebuilds the pipeline); one already in the scene is refused.</summary>
+    public void AddMeshCollider(Meshes.MeshCollider collider)
+    {
+        ArgumentNullException.ThrowIfNull(collider);
+        if (Array.IndexOf(_allMeshes, collider) >= 0) throw new ArgumentException("This mesh collider is already in the scene.", nameof(collider));
+        _meshes.Add(collider);
+        MeshesChanged();
+        Revision++;
+    }
+
+    /// <summary>Removes a mesh collider, whichever way it was added; false if it is not in the scene.</summary>
+    public bool RemoveMeshCollider(Meshes.MeshCollider collider)
+    {
+        if (ReferenceEquals(GetComponent<Meshes.MeshCollider>(), collider)) return RemoveComponent<Meshes.MeshCollider>();
+        if (!_meshes.Remove(collider)) return false;
+        MeshesChanged();
+        Revision++;
+        return true;
+    }
+
+    /// <summary>Removes every mesh collider (the component too).</summary>
+    public void ClearMeshColliders()
+    {
+        _components.Remove(typeof(Meshes.MeshCollider));
+        _meshes.Clear();
+        MeshesChanged();
+        Revision++;
+    }
+
+    private void MeshesChanged()
+    {
+        var component = GetComponent<Meshes.MeshCollider>();
+        var all = new List<Meshes.MeshCollider>(_meshes.Count + 1);
+        if (component != null) all.Add(component);
+        foreach (var m in _meshes) if (!ReferenceEquals(m, component)) all.Add(m);
+        _allMeshes = all.ToArray();
+    }
     public bool HasComponent<T>() where T : class => _components.ContainsKey(typeof(T));
     public T? GetComponent<T>() where T : class => _components.TryGetValue(typeof(T), out var c) ? (T)c : null;
 }

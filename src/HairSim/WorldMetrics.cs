@@ -10,14 +10,14 @@ public readonly record struct WorldMetrics(
     int ParticlesInside,
     int NonFinite)
 {
-    /// <summary>Measures against the scene's colliders (and its mesh collider's distance field) placed at the world's current head pose.</summary>
+    /// <summary>Measures against the scene's colliders (and its mesh colliders' distance fields) placed at the world's current head pose.</summary>
     public static WorldMetrics Measure(HairScene scene)
     {
         var w = scene.World;
         var colliders = new Collider[scene.Colliders.Count];
         for (int c = 0; c < colliders.Length; c++) colliders[c] = scene.Colliders[c].ToWorld(w.Head);
-        var mesh = scene.GetComponent<Meshes.MeshCollider>();
-        var meshPose = mesh?.PoseFor(w.Head) ?? w.Head;
+        var meshes = scene.MeshColliderArray;
+        var meshPoses = Array.ConvertAll(meshes, m => m.PoseFor(w.Head));
         double length = 0, rest = 0, maxStretch = 0, maxPen = 0;
         int inside = 0;
         for (int s = 0; s < w.StrandCount; s++)
@@ -35,9 +35,9 @@ public readonly record struct WorldMetrics(
                     if (w.RestLength[i] > 0) maxStretch = Math.Max(maxStretch, Math.Abs(l / w.RestLength[i] - 1));
                 }
                 if (w.InvMass[i] == 0f) continue;
-                if (mesh != null)
+                for (int m = 0; m < meshes.Length; m++)
                 {
-                    float dm = -mesh.Field.Distance(meshPose.InverseTransformPoint(p));
+                    float dm = -meshes[m].Field.Distance(meshPoses[m].InverseTransformPoint(p));
                     if (dm > 1e-6f + 5e-7f * p.Length()) { inside++; maxPen = Math.Max(maxPen, dm); }
                 }
                 foreach (var c in colliders)

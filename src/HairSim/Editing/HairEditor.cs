@@ -37,7 +37,7 @@ public static class HairEditor
         var grid = new StrokeGrid(stroke.Points);
         var colliders = new Collider[options.Reach == CutReach.VisibleOnly ? scene.Colliders.Count : 0];
         for (int c = 0; c < colliders.Length; c++) colliders[c] = scene.Colliders[c].ToWorld(w.Head);
-        var mesh = options.Reach == CutReach.VisibleOnly ? scene.GetComponent<Meshes.MeshCollider>() : null;
+        var mesh = options.Reach == CutReach.VisibleOnly ? scene.MeshColliderArray : [];
         var m = cam.ViewProjection;
         float vw = cam.ViewportSize.X * 0.5f, vh = cam.ViewportSize.Y * 0.5f;
         var cuts = new List<StrandCut>();
@@ -77,7 +77,7 @@ public static class HairEditor
     }
 
     /// <summary>Lifts a screen crossing onto strand segment (k−1, k) and checks the cut's rules.</summary>
-    private static bool TryCutAt(HairWorld w, StrokeCamera cam, Collider[] colliders, Meshes.MeshCollider? mesh, CutOptions o, int s, int k,
+    private static bool TryCutAt(HairWorld w, StrokeCamera cam, Collider[] colliders, Meshes.MeshCollider[] meshes, CutOptions o, int s, int k,
         Vector2 screen, float t2, double cumPrev, out StrandCut cut)
     {
         cut = default;
@@ -94,7 +94,8 @@ public static class HairEditor
             foreach (var c in colliders)
                 if (ColliderRay.Intersect(c, origin, dir, out float th) && th < tp - 1e-4f) return false;
         }
-        if (mesh != null && MeshHides(mesh, w.Head, origin, dir, Vector3.Dot(p - origin, dir))) return false;
+        foreach (var hiding in meshes)
+            if (MeshHides(hiding, w.Head, origin, dir, Vector3.Dot(p - origin, dir))) return false;
         float len = Vector3.Distance(a, p);
         if (len < MinTipSegment)
         {
@@ -140,7 +141,7 @@ public static class HairEditor
         var w = scene.World;
         var colliders = new Collider[options.VisibleOnly ? scene.Colliders.Count : 0];
         for (int c = 0; c < colliders.Length; c++) colliders[c] = scene.Colliders[c].ToWorld(w.Head);
-        var mesh = options.VisibleOnly ? scene.GetComponent<Meshes.MeshCollider>() : null;
+        var meshes = options.VisibleOnly ? scene.MeshColliderArray : [];
         var chosen = new List<int>();
         for (int s = 0; s < w.StrandCount; s++)
         {
@@ -150,10 +151,12 @@ public static class HairEditor
                 var p = w.GetPosition(first + k);
                 if (!camera.Project(p, out var sp, out _) || !area.Contains(sp)) continue;
                 if (colliders.Length > 0 && Hidden(camera, colliders, p, sp)) continue;
-                if (mesh != null)
+                if (meshes.Length > 0)
                 {
                     var (o, d) = camera.ScreenRay(sp);
-                    if (MeshHides(mesh, w.Head, o, d, Vector3.Dot(p - o, d))) continue;
+                    bool hidden = false;
+                    foreach (var mesh in meshes) hidden = hidden || MeshHides(mesh, w.Head, o, d, Vector3.Dot(p - o, d));
+                    if (hidden) continue;
                 }
                 chosen.Add(s);
                 break;

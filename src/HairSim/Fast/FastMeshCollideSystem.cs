@@ -21,10 +21,11 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
 {
     private readonly MeshCollideSystem _reference = new();
     private readonly HairScene? _scene;
+    // This frame's mesh colliders and each one's pose per substep ([substep × count + mesh]).
     private MeshCollideSystem.Pose[] _poses = [];
-    private MeshCollider? _collider;
+    private MeshCollider[] _colliders = [];
 
-    /// <param name="scene">The scene this pipeline steps: its collider is looked up once per frame instead of once per chunk.</param>
+    /// <param name="scene">The scene this pipeline steps: its colliders are looked up once per frame instead of once per chunk.</param>
     public FastMeshCollideSystem(HairScene? scene = null) => _scene = scene;
 
     public string Name => MeshCollideSystem.SystemName;
@@ -39,20 +40,19 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
 
     bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {
-        if (_poses.Length < ctx.Substeps) _poses = new MeshCollideSystem.Pose[ctx.Substeps];
-        _collider = _scene?.GetComponent<MeshCollider>();
-        for (int s = 0; s < ctx.Substeps; s++) _poses[s] = new MeshCollideSystem.Pose(_collider?.PoseFor(ctx.HeadAt(s)) ?? ctx.HeadAt(s));
+        _colliders = _scene?.MeshColliderArray ?? [];
+        int n = _colliders.Length;
+        if (_poses.Length < ctx.Substeps * n) _poses = new MeshCollideSystem.Pose[ctx.Substeps * n];
+        for (int s = 0; s < ctx.Substeps; s++)
+            for (int m = 0; m < n; m++) _poses[s * n + m] = new MeshCollideSystem.Pose(_colliders[m].PoseFor(ctx.HeadAt(s)));
         return true;
     }
 
     unsafe bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         bool mine = ReferenceEquals(scene, _scene);
-        var mc = mine ? _collider : scene.GetComponent<MeshCollider>();
-        if (mc == null) return true;
-        // Another scene's collider (a pipeline stepping a scene it was not built for): its pose for this substep.
-        var pose = mine ? _poses[substep] : new MeshCollideSystem.Pose(mc.PoseFor(ctx.HeadAt(substep)));
-        var field = mc.Field;
+        var colliders = mine ? _colliders : scene.MeshColliderArray;
+        if (colliders.Length == 0) return true;
         const int L = StrandChunk.Lanes;
         // The longest segment of the chunk (rows 1 … height − 1 hold the segments' rest lengths).
         ref float rest0 = ref chunk.Row(StrandChunk.RestLength, 0);
@@ -61,12 +61,20 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         float maxRest = 0f;
         for (int l = 0; l < 8; l++) maxRest = MathF.Max(maxRest, longest.GetElement(l));
         ref int live = ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(scene.World.StrandParticleCount), chunk.FirstStrand);
-        fixed (float* data = field.Data, bricks = field.Bricks)
+        var rows = new Rows(chunk);
+        // One mesh after the other, as the reference does over its strands.
+        for (int m = 0; m < colliders.Length; m++)
         {
-            var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose);
-            var rows = new Rows(chunk);
-            for (int g = 0; g < L; g += 8)
-                k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
+            var mc = colliders[m];
+            // Another scene's collider (a pipeline stepping a scene it was not built for): its pose for this substep.
+            var pose = mine ? _poses[substep * colliders.Length + m] : new MeshCollideSystem.Pose(mc.PoseFor(ctx.HeadAt(substep)));
+            var field = mc.Field;
+            fixed (float* data = field.Data, bricks = field.Bricks)
+            {
+                var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose);
+                for (int g = 0; g < L; g += 8)
+                    k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
+            }
         }
         return true;
     }

@@ -12,9 +12,10 @@ public enum ColliderSpace
 }
 
 /// <summary>
-/// A scene component: collide the hair with a mesh through its baked <see cref="SignedDistanceField"/>. Add it with
-/// <c>scene.SetComponent(new MeshCollider(sdf))</c>; the pipeline then holds <see cref="MeshCollideSystem"/>, and
-/// leaves it out when no scene asks for it. By default the field is in head space and moves with the head; a
+/// Collide the hair with a mesh through its baked <see cref="SignedDistanceField"/>. Add it with
+/// <c>scene.SetComponent(new MeshCollider(sdf))</c> (the scene's main mesh, e.g. the head a groom grows on) or, for
+/// more meshes (a body beside the head), <c>scene.AddMeshCollider(…)</c>: <see cref="HairScene.MeshColliders"/> lists them
+/// all. The pipeline then holds <see cref="MeshCollideSystem"/>, and leaves it out when no scene asks for it. By default the field is in head space and moves with the head; a
 /// <see cref="Placement"/> puts it elsewhere on the head, or, with <see cref="ColliderSpace.World"/>, anywhere in the
 /// world (set it before each step, e.g. from a bone's global pose: it holds for all substeps of that frame).
 /// </summary>
@@ -78,9 +79,9 @@ public sealed class MeshCollideSystem : IHairSystem
 
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
-        var mc = scene.GetComponent<MeshCollider>();
-        if (mc == null) return;
-        Collide(scene.World, mc, new Pose(mc.PoseFor(ctx.HeadAt(substep))), ctx.Settings.ContactSlide, begin, end);
+        // One mesh after the other over the same strands: strands are independent, so chunks (one mesh after the other per chunk) agree.
+        foreach (var mc in scene.MeshColliderArray)
+            Collide(scene.World, mc, new Pose(mc.PoseFor(ctx.HeadAt(substep))), ctx.Settings.ContactSlide, begin, end);
     }
 
     /// <summary>

@@ -59,7 +59,7 @@ public sealed class PipelineBuilder
         b.Add(new SystemFactory(CollideSystem.SystemName, SystemPhase.Substep, OrderCollide,
             s => s.Colliders.Count > 0, _ => new CollideSystem()));
         b.Add(new SystemFactory(Meshes.MeshCollideSystem.SystemName, SystemPhase.Substep, OrderMeshCollide,
-            s => s.HasComponent<Meshes.MeshCollider>(), _ => new Meshes.MeshCollideSystem()));
+            s => s.MeshColliders.Count > 0, _ => new Meshes.MeshCollideSystem()));
         b.Add(new SystemFactory(SegmentCollideSystem.SystemName, SystemPhase.Substep, OrderSegmentCollide,
             SegmentCollideSystem.Needed, _ => new SegmentCollideSystem()));
         b.Add(new SystemFactory(InterpolateSystem.SystemName, SystemPhase.FrameEnd, OrderInterpolate,
