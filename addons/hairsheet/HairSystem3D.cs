@@ -93,8 +93,8 @@ public partial class HairSystem3D : Node3D
     private readonly Stopwatch _stepTimer = new();
     private RigidTransform _lastHeadPose = RigidTransform.Identity;
     private string? _headProblem;
-    // The mesh collider node whose field follows a node or bone in world space: placed before every step.
-    private HairMeshCollider3D? _followingField;
+    // The mesh collider nodes whose fields follow a node or bone in world space: placed before every step.
+    private HairMeshCollider3D[] _followingFields = [];
     // Primitive collider nodes that follow a node or bone, and their indices in the scene's colliders: moved before every step.
     private IHairFollowingCollider[] _followers = [];
     private int[] _followerIndices = [];
@@ -702,32 +702,26 @@ public partial class HairSystem3D : Node3D
         foreach (var c in list) scene.AddCollider(c);
         _followers = followers.Select(x => x.Node).ToArray();
         _followerIndices = followers.Select(x => x.Index).ToArray();
-        // A mesh collider (HairMeshCollider3D with a baked field) joins as a scene component; the pipeline adds its system.
-        // The library takes one per scene: the first visible one with a usable field; any other is told it is ignored.
-        // Hair grown on a scalp mesh collides with that mesh's field.
-        HairSim.Meshes.MeshCollider? mesh = _scalpCollider;
-        _followingField = null;
+        // Mesh colliders: the scalp's field (hair grown on a mesh) is the scene's component; every visible HairMeshCollider3D
+        // with a usable field is added beside it (a head, a body, a prop: as many as there are).
+        foreach (var old in scene.MeshColliders.ToArray())
+            if (!ReferenceEquals(old, _scalpCollider)) scene.RemoveMeshCollider(old);
+        if (_scalpCollider != null && !scene.HasComponent<HairSim.Meshes.MeshCollider>()) scene.SetComponent(_scalpCollider);
+        var following = new List<HairMeshCollider3D>();
         foreach (var child in GetChildren())
         {
-            if (child is not HairMeshCollider3D m) continue;
-            if (!m.Visible) { m.SetIgnored(null); continue; }
-            if (mesh != null) { m.SetIgnored(_scalpCollider != null ? ScalpTakesTheMeshCollider : OneMeshCollider); continue; }
-            m.SetIgnored(null);
-            if (m.ToComponent() is not { } component) continue;
-            mesh = component;
-            if (component.Space == HairSim.Meshes.ColliderSpace.World) _followingField = m;
+            if (child is not HairMeshCollider3D m || !m.Visible || m.ToComponent() is not { } component) continue;
+            scene.AddMeshCollider(component);
+            if (component.Space == HairSim.Meshes.ColliderSpace.World) following.Add(m);
         }
-        if (mesh != null) scene.SetComponent(mesh);
-        else scene.RemoveComponent<HairSim.Meshes.MeshCollider>();
+        _followingFields = following.ToArray();
     }
-
-    private const string OneMeshCollider = "A hair node collides with one mesh: another HairMeshCollider3D before this one is used, this one is ignored.";
-    private const string ScalpTakesTheMeshCollider = "A hair node collides with one mesh: the hair grows on its Scalp Mesh and collides with that, this one is ignored.";
 
     /// <summary>Places the colliders that follow a node or bone (fields and primitives) where their frames are now (before the steps; allocates nothing).</summary>
     private void PlaceFollowingColliders()
     {
-        if (_followingField != null && IsInstanceValid(_followingField)) _followingField.PlaceField();
+        foreach (var field in _followingFields)
+            if (IsInstanceValid(field)) field.PlaceField();
         // Following primitives move without a rebuild; the library carries them across the substeps from the last frame's place.
         if (_scene == null) return;
         for (int i = 0; i < _followers.Length; i++)

@@ -7,7 +7,8 @@ namespace HairSheet;
 
 /// <summary>
 /// The hair collides with a mesh (a character's head or body) through a baked distance field. Child of a
-/// HairSystem3D; point <see cref="Source"/> at the MeshInstance3D and press "Bake distance field" in the inspector.
+/// HairSystem3D, which collides with every such child (a head and a body, each with its own Follow); point
+/// <see cref="Source"/> at the MeshInstance3D and press "Bake distance field" in the inspector.
 /// Without <see cref="Follow"/> the field is in head space and moves with the hair's head, as the other colliders do.
 /// With it, the field rides on that node (a BoneAttachment3D for a bone, a body, a prop) or on a Skeleton3D's bone
 /// (<see cref="FollowBone"/>) in world space: the hair node sets its place before every step. This node's own
@@ -24,7 +25,7 @@ public partial class HairMeshCollider3D : Node3D
     // The component last given to the hair node: while following, its placement is set every physics frame.
     private MeshCollider? _component;
     private int _boneIndex = -1;
-    private string? _followProblem, _ignoredBecause;
+    private string? _followProblem;
 
     /// <summary>The mesh to collide with (its surfaces are read at bake time).</summary>
     [Export] public MeshInstance3D? Source { get; set; }
@@ -152,15 +153,6 @@ public partial class HairMeshCollider3D : Node3D
         else ReportFollow(FollowDegenerate);
     }
 
-    /// <summary>Set by the hair node: why this collider is not used (it takes one mesh collider), or null.</summary>
-    internal void SetIgnored(string? why)
-    {
-        if (why == _ignoredBecause) return;
-        _ignoredBecause = why;
-        if (why != null) GD.PushWarning($"{Name}: {why}");
-        if (IsInsideTree()) UpdateConfigurationWarnings();
-    }
-
     /// <summary>Shown in the editor's Scene dock (nothing here depends on being in the editor).</summary>
     public override string[] _GetConfigurationWarnings()
     {
@@ -170,7 +162,6 @@ public partial class HairMeshCollider3D : Node3D
         else if (_field.Frame != FrameName()) w.Add($"The field was baked relative to the {_field.Frame}, but this collider follows the {FrameName()}: bake it again.");
         if (_follow != null && !ResolveBone(out string? why)) w.Add(why!);
         if (_followProblem != null) w.Add(_followProblem);
-        if (_ignoredBecause != null) w.Add(_ignoredBecause);
         return w.ToArray();
     }
 
