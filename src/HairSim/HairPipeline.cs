@@ -23,6 +23,7 @@ public sealed class HairPipeline
     private readonly NonFiniteContainment _containment;
     private readonly FrameReport _report = new();
     // Per collider this frame: whether it moves across the substeps (false: it is at its new placement throughout).
+    private bool[] _meshMoves = [];
     private bool[] _colliderMoves = [];
     // The farthest a moved collider's surface travels this frame: the guards' substeps keep it within a head's travel.
     private float _colliderTravel;
@@ -144,6 +145,23 @@ public sealed class HairPipeline
             }
             _colliderMoves[c] = moves;
         }
+        // Mesh colliders whose placement changed: carried the same way (a head-space placement moves with the head anyway).
+        var meshes = _scene.MeshColliderArray;
+        if (_meshMoves.Length < meshes.Length) _meshMoves = new bool[meshes.Length];
+        for (int m = 0; m < meshes.Length; m++)
+        {
+            var mc = meshes[m];
+            var a = mc.PlacementBefore; var b = mc.Placement;
+            bool moves = !teleported && (a.Position != b.Position || a.Rotation != b.Rotation);
+            if (moves)
+            {
+                float distance = System.Numerics.Vector3.Distance(a.Position, b.Position), angle = RigidTransform.Delta(a, b).Angle;
+                moves = !(distance > st.TeleportDistance * _scale.Reach || angle > st.TeleportAngle);
+                // A turning field's surface moves by at most the angle × its farthest corner's distance from the origin.
+                if (moves) _colliderTravel = MathF.Max(_colliderTravel, distance + angle * mc.Reach);
+            }
+            _meshMoves[m] = moves;
+        }
     }
 
     private static bool SamePlacement(in Collider a, in Collider b) =>
@@ -187,6 +205,21 @@ public sealed class HairPipeline
             {
                 var placed = _colliderMoves[c] ? Collider.Interpolate(_scene.ColliderBefore(c), colliders[c], f) : colliders[c];
                 ctx.SubstepColliders[s * nc + c] = placed.ToWorld(ctx.SubstepHeads[s]);
+            }
+        }
+
+        var meshes = _scene.MeshColliderArray;
+        if (ctx.SubstepMeshPoses.Length < meshes.Length * st.Substeps) ctx.SubstepMeshPoses = new RigidTransform[meshes.Length * st.Substeps];
+        ctx.SubstepMeshes = meshes;
+        for (int s = 0; s < st.Substeps; s++)
+        {
+            float f = s == st.Substeps - 1 ? to : from + (to - from) * ((s + 1) / (float)st.Substeps);
+            for (int m = 0; m < meshes.Length; m++)
+            {
+                var mc = meshes[m];
+                ctx.SubstepMeshPoses[s * meshes.Length + m] = _meshMoves[m]
+                    ? mc.PoseFor(ctx.SubstepHeads[s], RigidTransform.Interpolate(mc.PlacementBefore, mc.Placement, f))
+                    : mc.PoseFor(ctx.SubstepHeads[s]);
             }
         }
 

@@ -81,6 +81,7 @@ public sealed class HairScene
     internal void CollidersStepped()
     {
         for (int c = 0; c < _colliders.Count; c++) _collidersBefore[c] = _colliders[c];
+        foreach (var m in _allMeshes) m.Stepped();
     }
 
     /// <summary>Whether the segment test handles this collider (<see cref="SegmentCollideSystem.Needed"/>): a sphere or capsule thinner than the longest segment.</summary>
@@ -159,6 +160,8 @@ public sealed class HairScene
         var all = new List<Meshes.MeshCollider>(_meshes.Count + 1);
         if (component != null) all.Add(component);
         foreach (var m in _meshes) if (!ReferenceEquals(m, component)) all.Add(m);
+        // A collider that joins (or is listed again) starts where it is placed, not carried from an older placement.
+        foreach (var m in all) if (Array.IndexOf(_allMeshes, m) < 0) m.Stepped();
         _allMeshes = all.ToArray();
     }
     public bool HasComponent<T>() where T : class => _components.ContainsKey(typeof(T));

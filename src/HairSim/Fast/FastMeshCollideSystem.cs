@@ -44,7 +44,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         int n = _colliders.Length;
         if (_poses.Length < ctx.Substeps * n) _poses = new MeshCollideSystem.Pose[ctx.Substeps * n];
         for (int s = 0; s < ctx.Substeps; s++)
-            for (int m = 0; m < n; m++) _poses[s * n + m] = new MeshCollideSystem.Pose(_colliders[m].PoseFor(ctx.HeadAt(s)));
+            for (int m = 0; m < n; m++) _poses[s * n + m] = new MeshCollideSystem.Pose(ctx.MeshPoseAt(s, m, _colliders));
         return true;
     }
 
@@ -67,7 +67,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         {
             var mc = colliders[m];
             // Another scene's collider (a pipeline stepping a scene it was not built for): its pose for this substep.
-            var pose = mine ? _poses[substep * colliders.Length + m] : new MeshCollideSystem.Pose(mc.PoseFor(ctx.HeadAt(substep)));
+            var pose = mine ? _poses[substep * colliders.Length + m] : new MeshCollideSystem.Pose(ctx.MeshPoseAt(substep, m, colliders));
             var field = mc.Field;
             fixed (float* data = field.Data, bricks = field.Bricks)
             {

@@ -17,11 +17,14 @@ public enum ColliderSpace
 /// more meshes (a body beside the head), <c>scene.AddMeshCollider(…)</c>: <see cref="HairScene.MeshColliders"/> lists them
 /// all. The pipeline then holds <see cref="MeshCollideSystem"/>, and leaves it out when no scene asks for it. By default the field is in head space and moves with the head; a
 /// <see cref="Placement"/> puts it elsewhere on the head, or, with <see cref="ColliderSpace.World"/>, anywhere in the
-/// world (set it before each step, e.g. from a bone's global pose: it holds for all substeps of that frame).
+/// world (set it before each step, e.g. from a bone's global pose). A placement changed between two steps is carried
+/// from the last frame's across the substeps, as the head is, so a fast bone sweeps the hair instead of jumping into it;
+/// a jump beyond the teleport limits places it at once. A collider moving this way belongs to one scene.
 /// </summary>
 public sealed class MeshCollider
 {
     private RigidTransform _placement = RigidTransform.Identity;
+    private float _reach = -1f;
 
     public MeshCollider(SignedDistanceField field, float margin = 0f, TriangleMesh? mesh = null, ColliderSpace space = ColliderSpace.Head)
     {
@@ -59,8 +62,32 @@ public sealed class MeshCollider
     }
 
     /// <summary>The field's world pose while the head is at <paramref name="head"/>: what the collision, the metrics and visibility tests use.</summary>
-    public RigidTransform PoseFor(in RigidTransform head) => Space == ColliderSpace.World ? _placement
-        : new RigidTransform(head.TransformPoint(_placement.Position), Quaternion.Normalize(Quaternion.Concatenate(_placement.Rotation, head.Rotation)));
+    public RigidTransform PoseFor(in RigidTransform head) => PoseFor(head, _placement);
+
+    /// <summary>The world pose of the field placed at <paramref name="placement"/> (in this collider's space).</summary>
+    internal RigidTransform PoseFor(in RigidTransform head, in RigidTransform placement) => Space == ColliderSpace.World ? placement
+        : new RigidTransform(head.TransformPoint(placement.Position), Quaternion.Normalize(Quaternion.Concatenate(placement.Rotation, head.Rotation)));
+
+    /// <summary>The placement at the end of the last stepped frame: where the next frame carries it from.</summary>
+    internal RigidTransform PlacementBefore { get; private set; } = RigidTransform.Identity;
+
+    /// <summary>A frame has been stepped (or the collider joined a scene): its placement is the next frame's start.</summary>
+    internal void Stepped() => PlacementBefore = _placement;
+
+    /// <summary>How far the field's farthest corner lies from its origin: a turn by an angle moves its surface at most this × the angle.</summary>
+    internal float Reach
+    {
+        get
+        {
+            if (_reach < 0f)
+            {
+                var f = Field;
+                var lo = f.Origin; var hi = lo + f.CellSize * new Vector3(f.Nx - 1, f.Ny - 1, f.Nz - 1);
+                _reach = Vector3.Max(Vector3.Abs(lo), Vector3.Abs(hi)).Length();
+            }
+            return _reach;
+        }
+    }
 }
 
 /// <summary>
@@ -80,8 +107,9 @@ public sealed class MeshCollideSystem : IHairSystem
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
         // One mesh after the other over the same strands: strands are independent, so chunks (one mesh after the other per chunk) agree.
-        foreach (var mc in scene.MeshColliderArray)
-            Collide(scene.World, mc, new Pose(mc.PoseFor(ctx.HeadAt(substep))), ctx.Settings.ContactSlide, begin, end);
+        var colliders = scene.MeshColliderArray;
+        for (int m = 0; m < colliders.Length; m++)
+            Collide(scene.World, colliders[m], new Pose(ctx.MeshPoseAt(substep, m, colliders)), ctx.Settings.ContactSlide, begin, end);
     }
 
     /// <summary>

@@ -51,6 +51,17 @@ public sealed class FrameContext
 
     /// <summary>World-space colliders for substep s.</summary>
     public ReadOnlySpan<Collider> CollidersAt(int substep) => SubstepColliders.AsSpan(substep * ColliderCount, ColliderCount);
+
+    internal RigidTransform[] SubstepMeshPoses = [];
+    internal Meshes.MeshCollider[] SubstepMeshes = [];
+
+    /// <summary>
+    /// World pose of mesh collider m of <paramref name="colliders"/> at the end of substep s: carried across the frame
+    /// when the pipeline prepared it for these colliders, else (a context not made by the pipeline, or another
+    /// scene's colliders) its placement at the substep's head.
+    /// </summary>
+    internal RigidTransform MeshPoseAt(int substep, int m, Meshes.MeshCollider[] colliders) =>
+        ReferenceEquals(colliders, SubstepMeshes) ? SubstepMeshPoses[substep * colliders.Length + m] : colliders[m].PoseFor(HeadAt(substep));
 }
 
 /// <summary>
