@@ -64,6 +64,36 @@ public sealed class FastMeshCollideTests
     }
 
     [Fact]
+    public void TwoScenesWithDifferentFieldsOnOneThreadKeepTheReferenceBits()
+    {
+        // The chunk kernel remembers each row's last gathered cells per thread and mesh slot: a scene whose field is
+        // another on the same grid (the head 1.5 mm thicker) must not read the first scene's values, stepped in turn on one thread.
+        var (mesh, field) = Head.Value;
+        var thicker = (float[])field.Data.Clone();
+        for (int i = 0; i < thicker.Length; i++) thicker[i] -= 0.0015f;
+        var coarse = SignedDistanceField.FromData(field.Origin, field.CellSize, field.Nx, field.Ny, field.Nz, thicker);
+        HairScene Build(SignedDistanceField f)
+        {
+            // One chunk (2 × 16 strands), so each scene's chunk finds the rows the other scene's chunk left.
+            var scene = MeshScalp.BuildScene(mesh, field, new MeshGroomSettings { SheetCount = 2, StrandsPerSheet = 16, ScalpMaskThreshold = 0.5f },
+                new SimulationSettings { Path = SolverPath.Fast });
+            var grown = scene.GetComponent<MeshCollider>()!;
+            scene.SetComponent(new MeshCollider(f, grown.Margin, mesh));
+            return scene;
+        }
+        var scenes = new[] { Build(field), Build(coarse), Build(field), Build(coarse) };
+        var sims = scenes.Select(s => new HairSimulation(s, dispatcher: SequentialDispatcher.Instance)).ToArray();
+        sims[2].Pipeline.UseStrandChunks = false;
+        sims[3].Pipeline.UseStrandChunks = false;
+        for (int f = 1; f <= 20; f++)
+        {
+            foreach (var sim in sims) sim.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+            Assert.True(scenes[0].World.BitEquals(scenes[2].World), $"first field: chunks and the reference pass differ after frame {f}");
+            Assert.True(scenes[1].World.BitEquals(scenes[3].World), $"thicker field: chunks and the reference pass differ after frame {f}");
+        }
+    }
+
+    [Fact]
     public void MeshCollisionAllocatesNothingPerStep()
     {
         var scene = MeshScene();
