@@ -1,5 +1,6 @@
-// The ONE place the addon touches HairSim's editing API (HairSim.Editing, HairSim.IO). Every other addon file
-// uses only the wrapper types below (HairEdit, HairEditSession, HairStyleIO).
+// The ONE place the addon edits hair through HairSim's editing API (HairSim.Editing, HairSim.IO). Every other addon file
+// uses only the wrapper types below (HairEdit, HairEditSession, HairStyleIO); scalp painting, which edits the scalp
+// mask rather than the hair, is engine-free in Logic/ScalpMask (with the stroke camera both share, Logic/StrokeCameras).
 using System.Collections.Generic;
 using System.IO;
 using System.Numerics;
@@ -36,11 +37,7 @@ public static class HairEditAdapter
         return new HairEdit("Fit hair", HairEditor.Fit(scene, selection, new Stroke(stroke, cam), new FitOptions()));
     }
 
-    /// <summary>A projection with no perspective divide (last column 0, 0, 0, 1) is an orthographic camera.</summary>
-    private static StrokeCamera ToStrokeCamera(in CameraMatrices camera) =>
-        camera.Projection.M34 == 0f && camera.Projection.M44 == 1f
-            ? StrokeCamera.Orthographic(camera.View, camera.Projection, camera.Viewport)
-            : StrokeCamera.Perspective(camera.View, camera.Projection, camera.Viewport);
+    private static StrokeCamera ToStrokeCamera(in CameraMatrices camera) => StrokeCameras.From(camera);
 }
 
 /// <summary>The undo history of one hair node's scene.</summary>

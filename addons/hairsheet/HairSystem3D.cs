@@ -65,6 +65,8 @@ public partial class HairSystem3D : Node3D
     private Hairstyle? _hairstyle;
     private MeshInstance3D? _scalpMesh;
     private HairMeshField? _scalpField;
+    private HairScalpMask? _scalpMask;
+    private MeshInstance3D? _scalpOverlay;
     private float _scalpMaskThreshold = 0.5f;
     private float _scalpRootLift = 0.002f;
     private float _scalpDrape = 1f;
@@ -144,6 +146,12 @@ public partial class HairSystem3D : Node3D
     /// for a 25k-triangle head), at run time too.
     /// </summary>
     [Export] public HairMeshField? ScalpField { get => _scalpField; set => _scalpField = value; }
+    /// <summary>
+    /// Where hair grows, painted with the editor's Paint scalp / Erase scalp tools (a brush on the Scalp Mesh, undoable):
+    /// used instead of the vertex colours when it was painted on this mesh in this place; otherwise the colours decide
+    /// and the Output panel says why. Clear it to go back to the colours.
+    /// </summary>
+    [Export] public HairScalpMask? ScalpMask { get => _scalpMask; set { _scalpMask = value; Invalidate(); RefreshScalpOverlay(); } }
     [ExportToolButton("Bake scalp field")]
     public Callable BakeScalpFieldButton => Callable.From(BakeScalpField);
     /// <summary>Reads the scalp mesh again (after it was edited or reimported): regrows if it changed, keeps the hair and its edits if not.</summary>
@@ -335,7 +343,10 @@ public partial class HairSystem3D : Node3D
                 return;
             }
         }
-        string key = GrowthKey.Of(_settings, _hairstyle?.ToRecord(), _hairstyle?.GetInstanceId() ?? 0, scalp?.Key);
+        var painted = scalp != null ? PaintedMask(scalp, warn: true) : null;
+        // A painted mask is part of what grows: painting regrows, undoing a stroke brings the earlier hair back.
+        string? scalpKey = scalp == null ? null : painted == null ? scalp.Key : scalp.Key + "|mask=" + Logic.ScalpMask.Key(painted);
+        string key = GrowthKey.Of(_settings, _hairstyle?.ToRecord(), _hairstyle?.GetInstanceId() ?? 0, scalpKey);
         bool keepLive = _edits?.HasEntries == true;
         if (!fresh && key == _generations.CurrentKey && _generations.Live is { } live)
         {
@@ -356,7 +367,7 @@ public partial class HairSystem3D : Node3D
             if (scalp != null)
             {
                 groom = null;
-                scene = GrowOnScalp(scalp);
+                scene = GrowOnScalp(scalp, painted);
                 scalpCollider = scene.GetComponent<HairSim.Meshes.MeshCollider>();
             }
             else if (_hairstyle != null)
@@ -598,7 +609,7 @@ public partial class HairSystem3D : Node3D
     }
 
     /// <summary>Grows the hair on the scalp: its field from Scalp Field when that matches, else from the last bake, else baked now.</summary>
-    private HairScene GrowOnScalp(ScalpInput scalp)
+    private HairScene GrowOnScalp(ScalpInput scalp, byte[]? painted)
     {
         var mesh = ScalpGrowth.HeadSpaceMesh(scalp.Surfaces, scalp.MeshToHead);
         string fieldKey = ScalpGrowth.FieldKey(scalp.Key, _settings.ScalpCellSize);
@@ -618,7 +629,103 @@ public partial class HairSystem3D : Node3D
             GD.Print($"{Name}: scalp field {field.Nx}×{field.Ny}×{field.Nz} baked in {field.BakeTime.TotalMilliseconds:F0} ms" +
                      (_scalpField == null ? "; press Bake scalp field in the editor to store it and skip this when the scene opens." : "."));
         }
-        return ScalpGrowth.Grow(mesh, field, _settings);
+        return ScalpGrowth.Grow(mesh, field, _settings, painted);
+    }
+
+    /// <summary>The Scalp Mask's bits when it was painted on this scalp (same mesh, same place on the head), else null.</summary>
+    private byte[]? PaintedMask(ScalpInput scalp, bool warn)
+    {
+        if (_scalpMask == null || _scalpMask.Triangles.Length == 0) return null;
+        if (_scalpMask.ScalpKey == scalp.Key) return _scalpMask.Triangles;
+        if (warn) GD.PushWarning($"{Name}: Scalp Mask was painted on another mesh or with the mesh elsewhere on the head: the vertex colours decide where hair grows (paint again, or clear Scalp Mask).");
+        return null;
+    }
+
+    /// <summary>A scalp paint stroke, computed but not applied: the mask before (null: none, the vertex colours) and after.</summary>
+    public sealed record ScalpStroke(byte[]? Before, byte[] After, int TriangleCount, string ScalpKey);
+
+    /// <summary>
+    /// Paints (or erases) the scalp under a brush stroke seen through <paramref name="camera"/>, starting from the Scalp
+    /// Mask or, without one, from the vertex colours. Returns the stroke to apply with <see cref="SetScalpMask"/> (the
+    /// editor does it through its undo history), or null with <paramref name="why"/> when there is nothing to paint on
+    /// or the stroke changed nothing. Changes nothing itself.
+    /// </summary>
+    public ScalpStroke? PaintScalp(IReadOnlyList<System.Numerics.Vector2> stroke, CameraMatrices camera, float radius, bool erase, out string? why)
+    {
+        why = null;
+        if (_scalpMesh == null) { why = "Set Scalp Mesh first: the scalp is painted on it."; return null; }
+        if (!TryReadScalp(out var scalp, out why) || scalp == null) return null;
+        try
+        {
+            var mesh = ScalpGrowth.HeadSpaceMesh(scalp.Surfaces, scalp.MeshToHead);
+            var before = PaintedMask(scalp, warn: false);
+            var after = Logic.ScalpMask.Paint(mesh, before, _settings.ScalpMaskThreshold, stroke, radius,
+                erase ? HairSim.Meshes.ScalpPaintMode.Remove : HairSim.Meshes.ScalpPaintMode.Add, camera, HeadPose(), _scalpCollider);
+            if (after == null) { why = "The stroke changed nothing (painted already, facing away, or hidden behind the head)."; return null; }
+            return new ScalpStroke(before, after, mesh.TriangleCount, scalp.Key);
+        }
+        catch (ArgumentException e) { why = $"Scalp Mesh: {e.Message}"; return null; }
+    }
+
+    /// <summary>
+    /// Sets the Scalp Mask to these bits (empty: no mask, the vertex colours decide): the do and undo step of a paint
+    /// stroke. A new resource each time, so the undo history keeps the earlier one untouched.
+    /// </summary>
+    public void SetScalpMask(byte[] triangles, int triangleCount, string scalpKey) =>
+        ScalpMask = triangles.Length == 0 ? null : new HairScalpMask { Triangles = triangles, TriangleCount = triangleCount, ScalpKey = scalpKey };
+
+    /// <summary>Shows where hair grows (the painted mask, else the vertex colours') as a red film over the Scalp Mesh, while a scalp tool is active.</summary>
+    public void ShowScalpMask(bool show)
+    {
+        if (!show)
+        {
+            _scalpOverlay?.QueueFree();
+            _scalpOverlay = null;
+            return;
+        }
+        if (_scalpOverlay == null)
+        {
+            // Not owned by the scene: never saved, only drawn while painting.
+            _scalpOverlay = new MeshInstance3D
+            {
+                Name = "ScalpMaskOverlay",
+                CastShadow = GeometryInstance3D.ShadowCastingSetting.Off,
+                MaterialOverride = new StandardMaterial3D
+                {
+                    ShadingMode = BaseMaterial3D.ShadingModeEnum.Unshaded,
+                    Transparency = BaseMaterial3D.TransparencyEnum.Alpha,
+                    CullMode = BaseMaterial3D.CullModeEnum.Disabled,
+                    AlbedoColor = new Color(1f, 0.15f, 0.1f, 0.45f),
+                },
+            };
+            AddChild(_scalpOverlay);
+        }
+        RefreshScalpOverlay();
+    }
+
+    private void RefreshScalpOverlay()
+    {
+        if (_scalpOverlay == null || !IsInstanceValid(_scalpOverlay)) return;
+        _scalpOverlay.Mesh = null;
+        if (_scalpMesh == null || !TryReadScalp(out var scalp, out _) || scalp == null) return;
+        try
+        {
+            var mesh = ScalpGrowth.HeadSpaceMesh(scalp.Surfaces, scalp.MeshToHead);
+            var flags = Logic.ScalpMask.Start(mesh, PaintedMask(scalp, warn: false), _settings.ScalpMaskThreshold).Triangles;
+            var vertices = Logic.ScalpMask.Overlay(mesh, flags, lift: 0.0005f);
+            if (vertices.Length == 0) return;
+            var godot = new Vector3[vertices.Length];
+            for (int i = 0; i < vertices.Length; i++) godot[i] = vertices[i].ToGodot();
+            Godot.Collections.Array arrays = [];
+            arrays.Resize((int)Mesh.ArrayType.Max);
+            arrays[(int)Mesh.ArrayType.Vertex] = godot;
+            var film = new ArrayMesh();
+            film.AddSurfaceFromArrays(Mesh.PrimitiveType.Triangles, arrays);
+            _scalpOverlay.Mesh = film;
+            // The film's vertices are in head space: it sits where the head is.
+            _scalpOverlay.GlobalTransform = HeadTransform();
+        }
+        catch (ArgumentException e) { GD.PushWarning($"{Name}: the scalp overlay cannot be drawn: {e.Message}"); }
     }
 
     // ---- helpers ----

@@ -58,8 +58,14 @@ public static class ScalpGrowth
     /// <summary>
     /// Grows the node's groom on the scalp: its Sheets, Strands Per Sheet, Particles Per Strand, Strand Length and Seed,
     /// the scalp's mask threshold, root lift and drape. The scene holds the mesh collider of that field (head space).
-    /// Throws ArgumentException with the reason (no triangle on the scalp, too few roots fit) for the node to show.
+    /// With <paramref name="paintedMask"/> (a HairScalpMask's bytes, <see cref="ScalpMask"/>) the hair grows where it is
+    /// painted instead of where the vertex colours say. Throws ArgumentException with the reason (no triangle on the
+    /// scalp, too few roots fit, a mask painted on another mesh) for the node to show.
     /// </summary>
-    public static HairScene Grow(TriangleMesh headSpaceMesh, SignedDistanceField field, HairNodeSettings settings) =>
-        MeshScalp.BuildScene(headSpaceMesh, field, settings.ToMeshGroom(), settings.ToSimulation());
+    public static HairScene Grow(TriangleMesh headSpaceMesh, SignedDistanceField field, HairNodeSettings settings, byte[]? paintedMask = null)
+    {
+        var groom = settings.ToMeshGroom();
+        if (paintedMask != null) groom.Scalp = ScalpMask.Start(headSpaceMesh, paintedMask, settings.ScalpMaskThreshold);
+        return MeshScalp.BuildScene(headSpaceMesh, field, groom, settings.ToSimulation());
+    }
 }

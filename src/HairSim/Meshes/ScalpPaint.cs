@@ -45,6 +45,20 @@ public sealed class ScalpPaint
         return paint;
     }
 
+    /// <summary>
+    /// A scalp painted earlier (e.g. stored with a scene as one flag per triangle), to grow on or paint on from there.
+    /// A mask made for a mesh with another triangle count is refused (ArgumentException).
+    /// </summary>
+    public static ScalpPaint FromMask(TriangleMesh mesh, ReadOnlySpan<bool> triangles)
+    {
+        ArgumentNullException.ThrowIfNull(mesh);
+        if (triangles.Length != mesh.TriangleCount)
+            throw new ArgumentException($"The scalp mask has {triangles.Length} triangles but the mesh has {mesh.TriangleCount}: it was painted on another mesh.", nameof(triangles));
+        var paint = new ScalpPaint(mesh);
+        triangles.CopyTo(paint._scalp);
+        return paint;
+    }
+
     public TriangleMesh Mesh { get; }
     /// <summary>Per triangle of <see cref="Mesh"/>: scalp or not.</summary>
     public ReadOnlySpan<bool> Triangles => _scalp;
