@@ -18,8 +18,11 @@ public sealed class ScalpPaint
     private readonly bool[] _scalp;
     private readonly List<Step> _undo = [], _redo = [];
 
-    /// <summary>One stroke: the triangles it changed and the value it set them to.</summary>
-    private readonly record struct Step(int[] Triangles, bool Value);
+    /// <summary>One stroke (or whole-mask change): the triangles it marked and the ones it cleared.</summary>
+    private readonly record struct Step(int[] Marked, int[] Cleared)
+    {
+        public int Count => Marked.Length + Cleared.Length;
+    }
 
     /// <param name="mesh">The head mesh (head space, as the groom and the field use it).</param>
     /// <param name="everywhere">Start with every triangle marked (then paint away), or none (then paint on).</param>
@@ -78,6 +81,9 @@ public sealed class ScalpPaint
 
     public bool CanUndo => _undo.Count > 0;
     public bool CanRedo => _redo.Count > 0;
+    /// <summary>Strokes (and whole-mask changes) that can be undone, and redone.</summary>
+    public int UndoCount => _undo.Count;
+    public int RedoCount => _redo.Count;
 
     /// <summary>
     /// Marks (or clears) the triangles under <paramref name="area"/> seen through <paramref name="camera"/>, with the
@@ -88,8 +94,21 @@ public sealed class ScalpPaint
     /// </summary>
     public int Paint(StrokeCamera camera, SelectionArea area, ScalpPaintMode mode, in RigidTransform head, MeshCollider? occluder = null)
     {
-        ArgumentNullException.ThrowIfNull(camera);
         ArgumentNullException.ThrowIfNull(area);
+        return Paint(camera, [area], mode, head, occluder);
+    }
+
+    /// <summary>
+    /// One stroke made of several areas (their union: a brush's dabs along its path, say), painted as
+    /// <see cref="Paint(StrokeCamera, SelectionArea, ScalpPaintMode, in RigidTransform, MeshCollider?)"/> paints one,
+    /// and undone as one step.
+    /// </summary>
+    public int Paint(StrokeCamera camera, IReadOnlyList<SelectionArea> areas, ScalpPaintMode mode, in RigidTransform head, MeshCollider? occluder = null)
+    {
+        ArgumentNullException.ThrowIfNull(camera);
+        ArgumentNullException.ThrowIfNull(areas);
+        if (areas.Count == 0) throw new ArgumentException("A stroke needs at least one area.", nameof(areas));
+        foreach (var a in areas) if (a == null) throw new ArgumentNullException(nameof(areas), "A stroke's area is null.");
         if (mode is not (ScalpPaintMode.Add or ScalpPaintMode.Remove)) throw new ArgumentOutOfRangeException(nameof(mode), mode, "Unknown paint mode.");
         bool value = mode == ScalpPaintMode.Add;
         var changed = new List<int>();
@@ -98,19 +117,51 @@ public sealed class ScalpPaint
             if (_scalp[t] == value) continue;
             var (a, b, c) = Mesh.Triangle(t);
             var centre = head.TransformPoint((a + b + c) / 3f);
-            if (!camera.Project(centre, out var screen, out _) || !area.Contains(screen)) continue;
+            if (!camera.Project(centre, out var screen, out _) || !AnyContains(areas, screen)) continue;
             var normal = head.TransformDirection(Mesh.FaceNormal(t));
             var toCamera = camera.Kind == CameraProjection.Perspective ? camera.Position - centre : -camera.Forward;
             if (Vector3.Dot(normal, toCamera) <= 0f) continue;
             if (occluder != null && Hidden(occluder, head, camera, centre)) continue;
             changed.Add(t);
         }
-        if (changed.Count == 0) return 0;
-        var step = new Step(changed.ToArray(), value);
+        return Record(value ? new Step(changed.ToArray(), []) : new Step([], changed.ToArray()));
+    }
+
+    /// <summary>
+    /// Replaces the whole mask (one entry per triangle: clear it, fill it, go back to the vertex colours' mask) as one
+    /// undo step. Returns how many triangles changed; no change leaves no undo step.
+    /// </summary>
+    public int SetMask(ReadOnlySpan<bool> triangles)
+    {
+        if (triangles.Length != _scalp.Length)
+            throw new ArgumentException($"The mask has {triangles.Length} entries; the mesh has {_scalp.Length} triangles.", nameof(triangles));
+        var marked = new List<int>(); var cleared = new List<int>();
+        for (int t = 0; t < _scalp.Length; t++)
+            if (triangles[t] != _scalp[t]) (triangles[t] ? marked : cleared).Add(t);
+        return Record(new Step(marked.ToArray(), cleared.ToArray()));
+    }
+
+    /// <summary>The same mask on the same mesh, without the undo history (to grow from while this one is painted on).</summary>
+    public ScalpPaint CopyMask()
+    {
+        var copy = new ScalpPaint(Mesh);
+        _scalp.CopyTo(copy._scalp, 0);
+        return copy;
+    }
+
+    private static bool AnyContains(IReadOnlyList<SelectionArea> areas, Vector2 p)
+    {
+        for (int i = 0; i < areas.Count; i++) if (areas[i].Contains(p)) return true;
+        return false;
+    }
+
+    private int Record(Step step)
+    {
+        if (step.Count == 0) return 0;
         Apply(step, forward: true);
         _undo.Add(step);
         _redo.Clear();
-        return step.Triangles.Length;
+        return step.Count;
     }
 
     /// <summary>Takes back the last stroke that changed something.</summary>
@@ -137,8 +188,9 @@ public sealed class ScalpPaint
 
     private void Apply(Step step, bool forward)
     {
-        // A stroke only ever changes triangles that held the other value, so undoing sets them back to it.
-        foreach (int t in step.Triangles) _scalp[t] = forward ? step.Value : !step.Value;
+        // A step only ever marks triangles that were clear and clears ones that were marked, so undoing flips them back.
+        foreach (int t in step.Marked) _scalp[t] = forward;
+        foreach (int t in step.Cleared) _scalp[t] = !forward;
     }
 
     /// <summary>Does the mesh cover the point from the camera? (The visible-only cut's test, from the camera's ray.)</summary>

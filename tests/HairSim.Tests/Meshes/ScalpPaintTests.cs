@@ -122,6 +122,48 @@ public class ScalpPaintTests
     }
 
     [Fact]
+    public void A_stroke_of_several_areas_and_a_whole_mask_are_one_undo_step_each()
+    {
+        var head = ProceduralHead.Create();
+        var cam = Front(head);
+        var dabs = new[] { SelectionArea.Brush(new Vector2(260, 220), 30f), SelectionArea.Brush(new Vector2(300, 220), 30f), SelectionArea.Brush(new Vector2(340, 220), 30f) };
+        var union = new ScalpPaint(head);
+        int n = union.Paint(cam, dabs, ScalpPaintMode.Add, RigidTransform.Identity);
+        // The same triangles as the dabs painted one at a time, in one step.
+        var oneByOne = new ScalpPaint(head);
+        foreach (var d in dabs) oneByOne.Paint(cam, d, ScalpPaintMode.Add, RigidTransform.Identity);
+        Assert.True(n > 20);
+        Assert.Equal(oneByOne.Triangles.ToArray(), union.Triangles.ToArray());
+        Assert.Equal(1, union.UndoCount);
+        Assert.Equal(3, oneByOne.UndoCount);
+
+        // A whole mask with marks and clears at once (the vertex colours' scalp over the brushed patch): one step,
+        // undone and redone exactly.
+        var painted = union.Triangles.ToArray();
+        var colours = ScalpPaint.FromVertexColours(head, 0.5f);
+        int changed = union.SetMask(colours.Triangles);
+        Assert.True(changed > 0);
+        Assert.Equal(colours.Triangles.ToArray(), union.Triangles.ToArray());
+        Assert.Equal(0, union.SetMask(colours.Triangles));   // no change, no step
+        Assert.Equal(2, union.UndoCount);
+        Assert.True(union.Undo());
+        Assert.Equal(painted, union.Triangles.ToArray());
+        Assert.True(union.Redo());
+        Assert.Equal(colours.Triangles.ToArray(), union.Triangles.ToArray());
+
+        // A copy keeps the mask, not the history, and does not follow later strokes.
+        var copy = union.CopyMask();
+        Assert.Equal(union.Triangles.ToArray(), copy.Triangles.ToArray());
+        Assert.False(copy.CanUndo);
+        union.SetMask(new bool[head.TriangleCount]);
+        Assert.Equal(0, union.Count);
+        Assert.Equal(colours.Count, copy.Count);
+        Assert.Throws<ArgumentException>(() => union.SetMask(new bool[3]));
+        Assert.Throws<ArgumentException>(() => union.Paint(cam, Array.Empty<SelectionArea>(), ScalpPaintMode.Add, RigidTransform.Identity));
+        Assert.Equal(0, union.Count);
+    }
+
+    [Fact]
     public void The_head_pose_places_the_mesh_for_the_stroke()
     {
         // The head turned half round: a stroke on the front of the view now paints the back of the head.
@@ -151,7 +193,8 @@ public class ScalpPaintTests
         var before = paint.Triangles.ToArray();
         var cam = Front(head);
         Assert.Throws<ArgumentNullException>(() => paint.Paint(null!, SelectionArea.Brush(Vector2.One, 1f), ScalpPaintMode.Add, RigidTransform.Identity));
-        Assert.Throws<ArgumentNullException>(() => paint.Paint(cam, null!, ScalpPaintMode.Add, RigidTransform.Identity));
+        Assert.Throws<ArgumentNullException>(() => paint.Paint(cam, (SelectionArea)null!, ScalpPaintMode.Add, RigidTransform.Identity));
+        Assert.Throws<ArgumentNullException>(() => paint.Paint(cam, (IReadOnlyList<SelectionArea>)null!, ScalpPaintMode.Add, RigidTransform.Identity));
         Assert.Throws<ArgumentOutOfRangeException>(() => paint.Paint(cam, SelectionArea.Brush(Vector2.One, 1f), (ScalpPaintMode)7, RigidTransform.Identity));
         Assert.Throws<ArgumentOutOfRangeException>(() => ScalpPaint.FromVertexColours(head, float.NaN));
         Assert.Equal(before, paint.Triangles.ToArray());
