@@ -123,6 +123,21 @@ public static class FrameEncoder
     }
 
     /// <summary>
+    /// Scalp layout (the painted scalp of the mesh <see cref="EncodeMesh"/> sends): magic "HSS1", int32 revision, int32
+    /// triangle count, then one byte per triangle, 1 where hair grows and 0 elsewhere.
+    /// </summary>
+    public static byte[] EncodeScalp(HairSim.Meshes.ScalpPaint paint, int revision)
+    {
+        var mask = paint.Triangles;
+        var b = new byte[12 + mask.Length];
+        "HSS1"u8.CopyTo(b);
+        BinaryPrimitives.WriteInt32LittleEndian(b.AsSpan(4), revision);
+        BinaryPrimitives.WriteInt32LittleEndian(b.AsSpan(8), mask.Length);
+        for (int t = 0; t < mask.Length; t++) b[12 + t] = mask[t] ? (byte)1 : (byte)0;
+        return b;
+    }
+
+    /// <summary>
     /// Topology layout: magic "HST1", int32 revision, int32 strand count, int32 particle count; then per strand
     /// int32 first particle, int32 live particle count, int32 capacity, int32 sheet.
     /// </summary>

@@ -24,15 +24,24 @@ public static class StudioGrooms
     public static HairScene BuildScene(string name, int? strandsPerSheet = null)
     {
         var g = Create(name, strandsPerSheet);
-        if (!string.Equals(name, MeshHead, StringComparison.OrdinalIgnoreCase)) return GroomBuilder.BuildScene(g);
+        if (!IsMesh(name)) return GroomBuilder.BuildScene(g);
         var mesh = HairSim.Meshes.ProceduralHead.Create();
         var field = HairSim.Meshes.SignedDistanceField.Bake(mesh, 0.0025f);
-        return HairSim.Meshes.MeshScalp.BuildScene(mesh, field, new HairSim.Meshes.MeshGroomSettings
-        {
-            SheetCount = g.SheetCount, StrandsPerSheet = g.StrandsPerSheet, ParticlesPerStrand = g.ParticlesPerStrand,
-            StrandLength = g.StrandLength, ScalpMaskThreshold = 0.5f,
-        });
+        return HairSim.Meshes.MeshScalp.BuildScene(mesh, field, MeshSettings(g));
     }
+
+    /// <summary>Whether the named groom grows on a mesh (and so can be painted and grown again on a painted scalp).</summary>
+    public static bool IsMesh(string name) => string.Equals(name, MeshHead, StringComparison.OrdinalIgnoreCase);
+
+    /// <summary>A vertex whose colour is at least this red is scalp (the mesh head's own mask, where painting starts).</summary>
+    public const float ScalpMaskThreshold = 0.5f;
+
+    /// <summary>How a mesh groom grows: the groom's strands, density and length on the mesh's vertex-colour scalp.</summary>
+    public static HairSim.Meshes.MeshGroomSettings MeshSettings(GroomSettings g) => new()
+    {
+        SheetCount = g.SheetCount, StrandsPerSheet = g.StrandsPerSheet, ParticlesPerStrand = g.ParticlesPerStrand,
+        StrandLength = g.StrandLength, ScalpMaskThreshold = ScalpMaskThreshold,
+    };
 
     /// <summary>The named groom, with its strands per sheet (the density) overridden when given.</summary>
     public static GroomSettings Create(string name, int? strandsPerSheet = null)

@@ -88,6 +88,24 @@ public sealed class SettingsRequest
     public float? VolumeFriction { get; set; }
 }
 
+/// <summary>A paint stroke on a head mesh's scalp: a rectangle, lasso or brush (as selections are drawn) that adds or erases.</summary>
+public sealed class ScalpPaintRequest
+{
+    /// <summary>rectangle (two corners), lasso (a polygon) or brush (a path with a radius).</summary>
+    public string Shape { get; set; } = "brush";
+    /// <summary>add (paint scalp) or erase.</summary>
+    public string Mode { get; set; } = "add";
+    public float[]? Points { get; set; }
+    public float Radius { get; set; } = 30f;
+    public CameraRequest? Camera { get; set; }
+}
+
+/// <summary>The whole scalp at once: none, all, or colours (the mesh's vertex-colour scalp).</summary>
+public sealed class ScalpFillRequest
+{
+    public string? To { get; set; }
+}
+
 public sealed class HeadRequest
 {
     public float[]? Position { get; set; }
@@ -106,6 +124,12 @@ public sealed class GroomRequest
 public sealed record GroomChoice(string Name, string Description);
 public sealed record MetricsState(double LengthRatio, double MaxEdgeStretch, double MaxPenetrationMm, int ParticlesInside, int NonFinite);
 public sealed record ColliderState(string Kind, float[] Center, float[] End, float[] Radii, float[] Rotation);
+/// <summary>
+/// A head mesh's painted scalp: triangles in the mesh and painted, the painted area, a revision that changes with the
+/// mask (the page fetches api/scalp then), the paint strokes to undo and redo, the strands a grow would make now, and
+/// whether a grow is running.
+/// </summary>
+public sealed record ScalpState(int Triangles, int Painted, double AreaCm2, int Revision, int UndoCount, int RedoCount, int GrowStrands, bool Growing);
 
 /// <summary>Everything the page shows besides the strands themselves.</summary>
 public sealed record StudioState(
@@ -113,4 +137,4 @@ public sealed record StudioState(
     int Strands, int Particles, int LiveParticles, int CutStrands, double TotalRestLength, int EditStamp,
     int Revision, long Frame, double SimTime, double StepMs, double StepMsWorst, double SimHz, bool Paused, bool Shake,
     int UndoCount, int RedoCount, int[] Selection,
-    MetricsState Metrics, SettingsRequest Settings, HeadRequest Head, ColliderState[] Colliders, string Message);
+    MetricsState Metrics, SettingsRequest Settings, HeadRequest Head, ColliderState[] Colliders, ScalpState? Scalp, string Message);

@@ -57,6 +57,12 @@ public static class StudioServer
         app.MapPost("/api/redo", () => Run(s.Redo));
         app.MapPost("/api/regrow", () => Run(s.Regrow));
         app.MapPost("/api/reset", () => Run(s.ResetPose));
+        app.MapGet("/api/scalp", () => s.ScalpMask() is { } m ? Results.Bytes(m, "application/octet-stream") : Results.NotFound());
+        app.MapPost("/api/scalp/paint", (ScalpPaintRequest r) => Run(() => s.PaintScalp(r)));
+        app.MapPost("/api/scalp/fill", (ScalpFillRequest r) => Run(() => s.FillScalp(r)));
+        app.MapPost("/api/scalp/undo", () => Run(s.UndoScalp));
+        app.MapPost("/api/scalp/redo", () => Run(s.RedoScalp));
+        app.MapPost("/api/scalp/grow", () => Run(s.GrowOnScalp));
         app.MapPost("/api/settings", (SettingsRequest r) => Run(() => s.ApplySettings(r)));
         app.MapPost("/api/groom", (GroomRequest r) => Run(() => s.SetGroom(r)));
         app.MapPost("/api/head", (HeadRequest r) => Run(() => s.SetHead(r)));

@@ -3,6 +3,7 @@ using System.Numerics;
 using HairSim.Editing;
 using HairSim.IO;
 using HairSim.Measurement;
+using HairSim.Meshes;
 
 namespace HairSim.Cli.Studio;
 
@@ -30,6 +31,14 @@ public sealed class StudioSession : IDisposable
     private long _frame;
     private double _simTime;
     private string _message = "";
+
+    // The painted scalp of a mesh groom (null without a head mesh), how that groom grows, and the area of its own
+    // (vertex-colour) scalp: growing on a painted scalp keeps the groom's strands per area.
+    private ScalpPaint? _paint;
+    private MeshGroomSettings? _meshGroom;
+    private double _fullScalpArea;
+    private int _scalpRevision;
+    private volatile bool _growing;
 
     private Vector3 _headPosition;
     private float _yaw, _pitch, _roll;
@@ -191,7 +200,10 @@ public sealed class StudioSession : IDisposable
                     Volume = _scene.HasComponent<VolumeSettings>(), VolumeStiffness = _volume.Stiffness, VolumeFriction = _volume.Friction,
                 },
                 new HeadRequest { Position = Arr(_headPosition), Yaw = _yaw, Pitch = _pitch, Roll = _roll, Shake = _shake },
-                colliders.ToArray(), _message);
+                colliders.ToArray(),
+                _paint == null ? null : new ScalpState(_paint.Mesh.TriangleCount, _paint.Count, _paint.Area * 1e4, _scalpRevision,
+                    _paint.UndoCount, _paint.RedoCount, GrowCount(_paint.Area).Strands, _growing),
+                _message);
         }
     }
 
@@ -219,28 +231,7 @@ public sealed class StudioSession : IDisposable
         var camera = request.Camera?.ToStrokeCamera() ?? throw new ArgumentException("A selection needs the camera it was drawn with.");
         var pts = StrokeRequest.ParsePoints(request.Points, 1);
         var options = new SelectionOptions { RootsOnly = request.RootsOnly, VisibleOnly = request.VisibleOnly };
-        var areas = new List<SelectionArea>();
-        switch (request.Shape)
-        {
-            case "rectangle":
-                if (pts.Length < 2) throw new ArgumentException("A rectangle selection needs two corners.");
-                areas.Add(SelectionArea.Rectangle(pts[0], pts[^1]));
-                break;
-            case "lasso":
-                if (pts.Length < 3) throw new ArgumentException("A lasso needs at least three points.");
-                areas.Add(SelectionArea.Lasso(pts));
-                break;
-            case "brush":
-                if (!float.IsFinite(request.Radius) || request.Radius <= 0f || request.Radius > 2000f)
-                    throw new ArgumentException("Brush radius must be in (0, 2000] pixels.");
-                // Dabs at least half a radius apart: the union covers the stroke without a selection pass per pixel.
-                var last = new Vector2(float.NaN);
-                foreach (var p in pts)
-                    if (!(Vector2.Distance(p, last) < 0.5f * request.Radius)) { areas.Add(SelectionArea.Brush(p, request.Radius)); last = p; }
-                break;
-            default:
-                throw new ArgumentException($"Unknown selection shape '{request.Shape}': use rectangle, lasso or brush.");
-        }
+        var areas = StrokeAreas(request.Shape, pts, request.Radius);
         if (request.Mode is not ("replace" or "add" or "subtract")) throw new ArgumentException($"Unknown selection mode '{request.Mode}': use replace, add or subtract.");
         lock (_gate)
         {
@@ -254,6 +245,36 @@ public sealed class StudioSession : IDisposable
             _selection = new StrandSelection(w, chosen.ToArray());
             return Say($"{chosen.Count:N0} strands selected.");
         }
+    }
+
+    /// <summary>The screen areas of a rectangle (two corners), lasso (a polygon) or brush stroke (dabs along the path), for select and paint.</summary>
+    private static List<SelectionArea> StrokeAreas(string? shape, Vector2[] pts, float radius)
+    {
+        var areas = new List<SelectionArea>();
+        switch (shape)
+        {
+            case "rectangle":
+                if (pts.Length < 2) throw new ArgumentException("A rectangle needs two corners.");
+                if (MathF.Abs(pts[^1].X - pts[0].X) < 1f || MathF.Abs(pts[^1].Y - pts[0].Y) < 1f)
+                    throw new ArgumentException("A rectangle needs a width and a height: drag its corners apart.");
+                areas.Add(SelectionArea.Rectangle(pts[0], pts[^1]));
+                break;
+            case "lasso":
+                if (pts.Length < 3) throw new ArgumentException("A lasso needs at least three points.");
+                areas.Add(SelectionArea.Lasso(pts));
+                break;
+            case "brush":
+                if (!float.IsFinite(radius) || radius <= 0f || radius > 2000f)
+                    throw new ArgumentException("Brush radius must be in (0, 2000] pixels.");
+                // Dabs at least half a radius apart: the union covers the stroke without a pass per pixel.
+                var last = new Vector2(float.NaN);
+                foreach (var p in pts)
+                    if (!(Vector2.Distance(p, last) < 0.5f * radius)) { areas.Add(SelectionArea.Brush(p, radius)); last = p; }
+                break;
+            default:
+                throw new ArgumentException($"Unknown stroke shape '{shape}': use rectangle, lasso or brush.");
+        }
+        return areas;
     }
 
     public string ClearSelection() { lock (_gate) { _selection = null; return Say("Selection cleared."); } }
@@ -424,6 +445,156 @@ public sealed class StudioSession : IDisposable
 
     public string SetPaused(bool paused) { lock (_gate) { _paused = paused; return Say(paused ? "Paused." : "Running."); } }
 
+    // ---------------- the scalp of a mesh head ----------------
+
+    /// <summary>Most strands a grow on the painted scalp makes (a face, neck and ears painted at a high density would make many more).</summary>
+    public const int MaxGrowStrands = 60_000;
+
+    /// <summary>
+    /// Paints (mode "add") or erases (mode "erase") the head mesh's scalp under a rectangle, lasso or brush stroke:
+    /// the library's <see cref="ScalpPaint"/>, through the camera the stroke was drawn with, at the head's pose, the mesh
+    /// hiding what lies behind it. One undo step per stroke (<see cref="UndoScalp"/>); the hair changes only on
+    /// <see cref="GrowOnScalp"/>.
+    /// </summary>
+    public string PaintScalp(ScalpPaintRequest request)
+    {
+        if (_paint == null) throw new ArgumentException(NoMeshHead);
+        var camera = request.Camera?.ToStrokeCamera() ?? throw new ArgumentException("A paint stroke needs the camera it was drawn with.");
+        var mode = request.Mode switch
+        {
+            "add" => ScalpPaintMode.Add,
+            "erase" => ScalpPaintMode.Remove,
+            _ => throw new ArgumentException($"Unknown paint mode '{request.Mode}': use add or erase."),
+        };
+        var areas = StrokeAreas(request.Shape, StrokeRequest.ParsePoints(request.Points, 1), request.Radius);
+        lock (_gate)
+        {
+            var paint = PaintOrRefuse();
+            int n = paint.Paint(camera, areas, mode, _scene.World.Head, _scene.GetComponent<MeshCollider>());
+            if (n == 0)
+                return Say(mode == ScalpPaintMode.Add
+                    ? "The stroke covered no unpainted part of the head facing you: nothing changed."
+                    : "The stroke covered no painted part of the head facing you: nothing changed.");
+            _scalpRevision++;
+            return Say($"{(mode == ScalpPaintMode.Add ? "Painted" : "Erased")} {n:N0} triangles: {DescribeScalp(paint)}.");
+        }
+    }
+
+    /// <summary>The whole mask at once (undoable): "none" clears it, "all" paints every triangle, "colours" goes back to the mesh's vertex-colour scalp.</summary>
+    public string FillScalp(ScalpFillRequest request)
+    {
+        lock (_gate)
+        {
+            var paint = PaintOrRefuse();
+            var mask = request.To switch
+            {
+                "none" => new bool[paint.Mesh.TriangleCount],
+                "all" => Enumerable.Repeat(true, paint.Mesh.TriangleCount).ToArray(),
+                "colours" => ScalpPaint.FromVertexColours(paint.Mesh, StudioGrooms.ScalpMaskThreshold).Triangles.ToArray(),
+                _ => throw new ArgumentException($"Unknown scalp fill '{request.To}': use none, all or colours."),
+            };
+            if (paint.SetMask(mask) == 0) return Say($"The scalp was already so: {DescribeScalp(paint)}.");
+            _scalpRevision++;
+            return Say($"Scalp {(request.To == "none" ? "cleared" : request.To == "all" ? "painted everywhere" : "set from the mesh's colours")}: {DescribeScalp(paint)}.");
+        }
+    }
+
+    public string UndoScalp()
+    {
+        lock (_gate)
+        {
+            var paint = PaintOrRefuse();
+            if (!paint.Undo()) return Say("Nothing to undo on the scalp.");
+            _scalpRevision++;
+            return Say($"Scalp stroke undone: {DescribeScalp(paint)}.");
+        }
+    }
+
+    public string RedoScalp()
+    {
+        lock (_gate)
+        {
+            var paint = PaintOrRefuse();
+            if (!paint.Redo()) return Say("Nothing to redo on the scalp.");
+            _scalpRevision++;
+            return Say($"Scalp stroke redone: {DescribeScalp(paint)}.");
+        }
+    }
+
+    /// <summary>
+    /// Grows the groom again on the painted scalp, at the groom's density (strands per area of its own scalp), with
+    /// the current settings; the new hair replaces the old (the haircut and its undo history go, as with a new groom;
+    /// the painted scalp and its strokes stay). The growth runs outside the simulation's lock, so the running hair
+    /// keeps moving meanwhile, and it is kept if the growth is refused (an empty or too small scalp, too few roots).
+    /// </summary>
+    public string GrowOnScalp()
+    {
+        MeshCollider collider;
+        MeshGroomSettings settings;
+        SimulationSettings simulation;
+        double area;
+        lock (_gate)
+        {
+            var paint = PaintOrRefuse();
+            if (_growing) throw new ArgumentException("Hair is already growing on the scalp: wait for it to finish.");
+            if (paint.Count == 0) throw new ArgumentException("The painted scalp is empty: paint where hair should grow (Paint scalp, add) first. The hair was kept.");
+            area = paint.Area;
+            var (sheets, strands) = GrowCount(area);
+            if (sheets < 1)
+                throw new ArgumentException($"The painted scalp ({area * 1e4:F1} cm²) is too small for one sheet of {_meshGroom!.StrandsPerSheet} strands at this density: paint more. The hair was kept.");
+            if (strands > MaxGrowStrands)
+                throw new ArgumentException($"The painted scalp ({area * 1e4:F0} cm²) would grow {strands:N0} strands at this density, more than {MaxGrowStrands:N0}: erase some or lower the density. The hair was kept.");
+            collider = _scene.GetComponent<MeshCollider>()!;
+            var g = _meshGroom!;
+            settings = new MeshGroomSettings
+            {
+                SheetCount = sheets, StrandsPerSheet = g.StrandsPerSheet, ParticlesPerStrand = g.ParticlesPerStrand, StrandLength = g.StrandLength,
+                PinnedPerStrand = g.PinnedPerStrand, RootLift = g.RootLift, Drape = g.Drape, Seed = g.Seed, Scalp = paint.CopyMask(),
+            };
+            simulation = _scene.Settings.Clone();
+            _growing = true;
+        }
+        try
+        {
+            long t0 = Stopwatch.GetTimestamp();
+            HairScene scene;
+            try { scene = MeshScalp.BuildScene(collider.Mesh!, collider.Field, settings, simulation); }
+            catch (ArgumentException e) { throw new ArgumentException($"No hair grown: {e.Message} The hair was kept.", e); }
+            lock (_gate)
+            {
+                if (!ReferenceEquals(_paint?.Mesh, collider.Mesh))
+                    throw new ArgumentException("The head changed while the hair grew: the new hair was dropped.");
+                Install(scene, scene.World.Clone(), _groomName);
+                return Say($"Grew {scene.World.StrandCount:N0} strands on the painted scalp ({area * 1e4:F0} cm²) in {Stopwatch.GetElapsedTime(t0).TotalSeconds:F1} s.");
+            }
+        }
+        finally { _growing = false; }
+    }
+
+    /// <summary>The painted scalp for the page (see <see cref="FrameEncoder.EncodeScalp"/>), or null without a head mesh.</summary>
+    public byte[]? ScalpMask()
+    {
+        lock (_gate) return _paint == null ? null : FrameEncoder.EncodeScalp(_paint, _scalpRevision);
+    }
+
+    private const string NoMeshHead = "Only a head mesh's scalp can be painted: grow the 'mesh head' groom first.";
+
+    private ScalpPaint PaintOrRefuse() => _paint ?? throw new ArgumentException(NoMeshHead);
+
+    /// <summary>Sheets and strands a grow on this much scalp makes: the groom's sheets in proportion to its own scalp's area.</summary>
+    private (int Sheets, int Strands) GrowCount(double area)
+    {
+        if (_meshGroom == null || !(_fullScalpArea > 0)) return (0, 0);
+        int sheets = (int)Math.Min(int.MaxValue / 2, Math.Round(_meshGroom.SheetCount * area / _fullScalpArea));
+        return (sheets, (int)Math.Min(int.MaxValue / 2, (long)sheets * _meshGroom.StrandsPerSheet));
+    }
+
+    private string DescribeScalp(ScalpPaint paint)
+    {
+        double area = paint.Area;
+        return $"scalp {area * 1e4:F0} cm², {paint.Count:N0} triangles, {GrowCount(area).Strands:N0} strands to grow";
+    }
+
     // ---------------- internals ----------------
 
     private string Say(string message) => _message = message;
@@ -432,6 +603,14 @@ public sealed class StudioSession : IDisposable
     {
         var scene = StudioGrooms.BuildScene(name, strandsPerSheet);
         Install(scene, scene.World.Clone(), name.ToLowerInvariant());
+        if (scene.GetComponent<MeshCollider>()?.Mesh is { } mesh && StudioGrooms.IsMesh(name))
+        {
+            // Painting starts from the mesh's own scalp, the one the groom grew on.
+            _paint = ScalpPaint.FromVertexColours(mesh, StudioGrooms.ScalpMaskThreshold);
+            _meshGroom = StudioGrooms.MeshSettings(StudioGrooms.Create(name, strandsPerSheet));
+            _fullScalpArea = _paint.Area;
+            _scalpRevision++;
+        }
         _headPosition = Vector3.Zero; _yaw = _pitch = _roll = 0f; _shake = false;
     }
 
@@ -454,6 +633,11 @@ public sealed class StudioSession : IDisposable
         scene.SetComponent(_history);
         _groomWorld = groomWorld;
         _groomName = name;
+        // The painted scalp belongs to its mesh: hair without that mesh (another groom, another file) drops it.
+        if (_paint != null && !ReferenceEquals(scene.GetComponent<MeshCollider>()?.Mesh, _paint.Mesh))
+        {
+            _paint = null; _meshGroom = null; _fullScalpArea = 0; _scalpRevision++;
+        }
         _selection = null;
         _revision++;
         _stepMsWorst = 0;

@@ -321,6 +321,157 @@ public sealed class StudioSessionTests : IDisposable
         Assert.Equal(saved, _session.Save());
     }
 
+    /// <summary>The head mesh's triangle centres and the painted mask, decoded from what the page receives.</summary>
+    private (Vector3[] Centres, byte[] Mask) MeshAndScalp()
+    {
+        var mesh = _session.Mesh()!;
+        int nv = BitConverter.ToInt32(mesh, 4), nt = BitConverter.ToInt32(mesh, 8);
+        Vector3 V(int i) => new(BitConverter.ToSingle(mesh, 12 + 12 * i), BitConverter.ToSingle(mesh, 16 + 12 * i), BitConverter.ToSingle(mesh, 20 + 12 * i));
+        var centres = new Vector3[nt];
+        for (int t = 0; t < nt; t++)
+        {
+            int o = 12 + 12 * nv + 12 * t;
+            centres[t] = (V(BitConverter.ToInt32(mesh, o)) + V(BitConverter.ToInt32(mesh, o + 4)) + V(BitConverter.ToInt32(mesh, o + 8))) / 3f;
+        }
+        var scalp = _session.ScalpMask()!;
+        Assert.Equal("HSS1"u8.ToArray(), scalp[..4]);
+        Assert.Equal(nt, BitConverter.ToInt32(scalp, 8));
+        return (centres, scalp[12..]);
+    }
+
+    [Fact]
+    public void PaintingTheScalpNeedsAMeshHeadAndSaysSo()
+    {
+        Settle(5);
+        _session.SetPaused(true);
+        var before = _session.Save();
+        Assert.Null(_session.State().Scalp);
+        Assert.Null(_session.ScalpMask());
+        var stroke = new ScalpPaintRequest { Points = Line(Front, new(-0.04f, 0.085f, 0.05f), new(0.04f, 0.085f, 0.05f), 8), Camera = Front };
+        var refused = new Func<string>[]
+        {
+            () => _session.PaintScalp(stroke), () => _session.FillScalp(new ScalpFillRequest { To = "none" }),
+            _session.UndoScalp, _session.RedoScalp, _session.GrowOnScalp,
+        };
+        foreach (var command in refused) Assert.Contains("mesh head", Assert.ThrowsAny<ArgumentException>(() => command()).Message);
+        Assert.Equal(before, _session.Save());
+        Assert.Equal(0, _session.State().UndoCount);
+    }
+
+    [Fact]
+    public void PaintedScalpGrowsHairOnlyThereStrokesUndoAndBadInputChangesNothing()
+    {
+        _session.SetGroom(new GroomRequest { Name = StudioGrooms.MeshHead, StrandsPerSheet = 4 });
+        _session.SetPaused(true);
+        var start = _session.State().Scalp!;
+        Assert.Equal(1200, _session.State().Strands);
+        Assert.True(start.Painted > 1000, $"painting starts from the mesh's vertex-colour scalp ({start.Painted} triangles)");
+        Assert.Equal(1200, start.GrowStrands);   // the whole of the groom's own scalp grows the groom's strands
+        var startMask = _session.ScalpMask();
+        var hair = _session.Save();
+
+        // Bad strokes: refused with a reason, the mask and the hair as they were.
+        var line = Line(Front, new(-0.04f, 0.085f, 0.05f), new(0.04f, 0.085f, 0.05f), 8);
+        var nan = (float[])line.Clone(); nan[3] = float.NaN;
+        var refused = new Action[]
+        {
+            () => _session.PaintScalp(new ScalpPaintRequest { Shape = "lasso", Points = line[..4], Camera = Front }),          // two points
+            () => _session.PaintScalp(new ScalpPaintRequest { Shape = "lasso", Points = [.. line[..2], .. line[..2], .. line[..2]], Camera = Front }), // no area
+            () => _session.PaintScalp(new ScalpPaintRequest { Shape = "rectangle", Points = [.. line[..2], .. line[..2]], Camera = Front }),          // no size
+            () => _session.PaintScalp(new ScalpPaintRequest { Points = nan, Camera = Front }),
+            () => _session.PaintScalp(new ScalpPaintRequest { Points = line }),                                                  // no camera
+            () => _session.PaintScalp(new ScalpPaintRequest { Points = line, Camera = Front, Mode = "smudge" }),
+            () => _session.PaintScalp(new ScalpPaintRequest { Points = line, Camera = Front, Shape = "circle" }),
+            () => _session.PaintScalp(new ScalpPaintRequest { Points = line, Camera = Front, Radius = 0 }),
+            () => _session.PaintScalp(new ScalpPaintRequest { Points = [], Camera = Front }),
+            () => _session.FillScalp(new ScalpFillRequest { To = "half" }),
+        };
+        foreach (var command in refused) Assert.ThrowsAny<ArgumentException>(command);
+        Assert.Equal(startMask, _session.ScalpMask());
+        Assert.Equal(0, _session.State().Scalp!.UndoCount);
+
+        // An empty scalp grows nothing and keeps the hair.
+        Assert.StartsWith("Scalp cleared", _session.FillScalp(new ScalpFillRequest { To = "none" }));
+        Assert.Equal(0, _session.State().Scalp!.Painted);
+        Assert.Contains("empty", Assert.ThrowsAny<ArgumentException>(_session.GrowOnScalp).Message);
+        Assert.Equal(hair, _session.Save());
+
+        // A brush stroke across the top of the forehead: painted there only, one undo step.
+        const float radius = 25f;
+        var cleared = _session.State().Scalp!;
+        Assert.StartsWith("Painted", _session.PaintScalp(new ScalpPaintRequest { Shape = "brush", Mode = "add", Points = line, Radius = radius, Camera = Front }));
+        var painted = _session.State().Scalp!;
+        Assert.True(painted.Painted > 20, $"{painted.Painted} triangles painted");
+        Assert.NotEqual(cleared.Revision, painted.Revision);
+        Assert.Equal(2, painted.UndoCount);
+        Assert.InRange(painted.GrowStrands, 4, 600);
+        var (centres, mask) = MeshAndScalp();
+        var camera = Front.ToStrokeCamera();
+        var strokePoints = Enumerable.Range(0, line.Length / 2).Select(i => new Vector2(line[2 * i], line[2 * i + 1])).ToArray();
+        float FromStroke(Vector2 p) => strokePoints.Min(q => Vector2.Distance(p, q));
+        for (int t = 0; t < mask.Length; t++)
+            if (mask[t] == 1)
+            {
+                Assert.True(camera.Project(centres[t], out var sc, out _) && FromStroke(sc) <= radius + 0.01f, $"triangle {t} painted off the stroke");
+                Assert.True(centres[t].Z > 0, $"triangle {t} painted on the back of the head");
+            }
+        // Painting leaves the hair alone.
+        Assert.Equal(hair, _session.Save());
+        Assert.Equal(0, _session.State().UndoCount);
+
+        // Grow: the groom's density on the painted area, every root on a painted triangle, under the stroke.
+        Assert.StartsWith("Grew", _session.GrowOnScalp());
+        var grown = _session.State();
+        Assert.Equal(painted.GrowStrands, grown.Strands);
+        Assert.Equal(0, grown.UndoCount);
+        Assert.True(grown.CanRegrow, "the grown hair is the groom Regrow brings back");
+        Settle(30);
+        Assert.Equal(0, _session.State().Metrics.NonFinite);
+        var paintedCentres = centres.Where((_, t) => mask[t] == 1).ToArray();
+        _session.SetPaused(true);   // roots are pinned: where they grew
+        var frame = _session.Frame();
+        var topology = _session.Topology();
+        for (int s = 0; s < grown.Strands; s++)
+        {
+            var root = FrameEncoder.DecodePosition(frame, BitConverter.ToInt32(topology, FrameEncoder.TopologyHeaderBytes + 16 * s));
+            float nearest = paintedCentres.Min(c => Vector3.Distance(c, root));
+            Assert.True(nearest < 0.006f, $"root of strand {s} is {nearest * 1000:F1} mm from the painted scalp");
+            Assert.True(camera.Project(root, out var sc, out _) && FromStroke(sc) < radius + 15f, $"root of strand {s} at {sc} is off the stroke");
+        }
+
+        // Undo and redo take back paint strokes, not the hair.
+        var grownHair = _session.Save();
+        Assert.StartsWith("Scalp stroke undone", _session.UndoScalp());
+        Assert.Equal(0, _session.State().Scalp!.Painted);
+        Assert.Equal(grown.Strands, _session.State().Strands);
+        _session.UndoScalp();
+        Assert.Equal(startMask![12..], _session.ScalpMask()![12..]);
+        Assert.StartsWith("Nothing to undo", _session.UndoScalp());
+        _session.RedoScalp();
+        _session.RedoScalp();
+        Assert.Equal(painted.Painted, _session.State().Scalp!.Painted);
+        Assert.Equal(grownHair, _session.Save());
+
+        // Too small a patch for one sheet: refused with the reason, the hair kept.
+        _session.FillScalp(new ScalpFillRequest { To = "none" });
+        _session.PaintScalp(new ScalpPaintRequest { Points = line[..2], Radius = 4, Camera = Front });
+        var tiny = _session.State().Scalp!;
+        Assert.InRange(tiny.Painted, 1, 8);
+        Assert.Equal(0, tiny.GrowStrands);
+        Assert.Contains("too small", Assert.ThrowsAny<ArgumentException>(_session.GrowOnScalp).Message);
+        Assert.Equal(grownHair, _session.Save());
+
+        // Back to the mesh's colours and grow: the groom as it started.
+        _session.FillScalp(new ScalpFillRequest { To = "colours" });
+        Assert.Equal(startMask![12..], _session.ScalpMask()![12..]);
+        _session.GrowOnScalp();
+        Assert.Equal(1200, _session.State().Strands);
+
+        // Another groom drops the painted scalp with its mesh.
+        _session.SetGroom(new GroomRequest { Name = "small" });
+        Assert.Null(_session.State().Scalp);
+    }
+
     [Fact]
     public async Task HttpApiServesStateFramesAndRefusesBadRequestsWith400()
     {
@@ -340,6 +491,12 @@ public sealed class StudioSessionTests : IDisposable
             var corrupt = await http.PostAsync("api/load", new ByteArrayContent("nonsense"u8.ToArray()));
             Assert.Equal(HttpStatusCode.BadRequest, corrupt.StatusCode);
             Assert.Equal(HttpStatusCode.BadRequest, (await http.GetAsync("api/export/fbx")).StatusCode);
+
+            var paint = await http.PostAsJsonAsync("api/scalp/paint", new { shape = "brush", points = new[] { 400f, 300f }, radius = 20f });
+            Assert.Equal(HttpStatusCode.BadRequest, paint.StatusCode);
+            Assert.Contains("mesh head", (await paint.Content.ReadFromJsonAsync<JsonElement>()).GetProperty("error").GetString());
+            Assert.Equal(HttpStatusCode.NotFound, (await http.GetAsync("api/scalp")).StatusCode);
+            Assert.Equal(JsonValueKind.Null, (await http.GetFromJsonAsync<JsonElement>("api/state")).GetProperty("scalp").ValueKind);
 
             var saved = await http.GetByteArrayAsync("api/save");
             var reload = await http.PostAsync("api/load", new ByteArrayContent(saved));
