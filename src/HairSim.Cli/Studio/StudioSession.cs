@@ -493,7 +493,7 @@ public sealed class StudioSession : IDisposable
                 "colours" => ScalpPaint.FromVertexColours(paint.Mesh, StudioGrooms.ScalpMaskThreshold).Triangles.ToArray(),
                 _ => throw new ArgumentException($"Unknown scalp fill '{request.To}': use none, all or colours."),
             };
-            if (paint.SetMask(mask) == 0) return Say($"The scalp was already so: {DescribeScalp(paint)}.");
+            if (paint.SetMask(mask) == 0) return Say($"Nothing changed: {DescribeScalp(paint)}.");
             _scalpRevision++;
             return Say($"Scalp {(request.To == "none" ? "cleared" : request.To == "all" ? "painted everywhere" : "set from the mesh's colours")}: {DescribeScalp(paint)}.");
         }
@@ -565,7 +565,9 @@ public sealed class StudioSession : IDisposable
                 if (!ReferenceEquals(_paint?.Mesh, collider.Mesh))
                     throw new ArgumentException("The head changed while the hair grew: the new hair was dropped.");
                 Install(scene, scene.World.Clone(), _groomName);
-                return Say($"Grew {scene.World.StrandCount:N0} strands on the painted scalp ({area * 1e4:F0} cm²) in {Stopwatch.GetElapsedTime(t0).TotalSeconds:F1} s.");
+                var took = Stopwatch.GetElapsedTime(t0);
+                return Say($"Grew {scene.World.StrandCount:N0} strands on the painted scalp ({area * 1e4:F0} cm²) in " +
+                    (took.TotalSeconds < 1 ? $"{took.TotalMilliseconds:F0} ms." : $"{took.TotalSeconds:F1} s."));
             }
         }
         finally { _growing = false; }
@@ -592,7 +594,7 @@ public sealed class StudioSession : IDisposable
     private string DescribeScalp(ScalpPaint paint)
     {
         double area = paint.Area;
-        return $"scalp {area * 1e4:F0} cm², {paint.Count:N0} triangles, {GrowCount(area).Strands:N0} strands to grow";
+        return $"the scalp is now {area * 1e4:F0} cm² ({paint.Count:N0} triangles) and grows {GrowCount(area).Strands:N0} strands";
     }
 
     // ---------------- internals ----------------
