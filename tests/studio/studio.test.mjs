@@ -154,6 +154,84 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
     await page.screenshot({ path: path.join(artifacts, 'studio-mesh-head.png') });
   });
 
+  it('paints the mesh head\'s scalp, grows hair only there, and undoes the stroke', async () => {
+    const post = (p, body) => fetch(new URL(`api/${p}`, url), { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
+    await page.click('[data-tool=paint]');
+    await until(() => page.evaluate(() => window.studio.view.lines.visible === false), 'the hair hidden while painting');
+    const start = (await state()).scalp;
+    assert.ok(start.painted > 1000, `painting starts from the mesh's own scalp (${start.painted} triangles)`);
+    await until(() => page.evaluate(n => window.studio.view.scalpShown() === n, start.painted), 'the scalp drawn on the head');
+
+    // A degenerate stroke (a click with the rectangle) is refused with a message and changes nothing.
+    await page.check('input[name=shape][value=rectangle]');
+    const [cx, cy] = await ui.screen([0, 0.085, 0.05]);
+    await page.mouse.click(cx, cy);
+    await until(() => page.evaluate(() => document.querySelector('#message').classList.contains('error')), 'the refusal');
+    assert.match(await page.textContent('#message'), /rectangle/);
+    assert.equal((await state()).scalp.revision, start.revision);
+
+    // Clear, then a brush stroke across the top of the forehead.
+    await page.click('#scalp-clear');
+    await until(async () => (await state()).scalp.painted === 0, 'the scalp cleared');
+    await page.check('input[name=shape][value=brush]');
+    const radius = await page.evaluate(() => window.studio.options.brushRadius);
+    const from = [-0.04, 0.085, 0.05], to = [0.04, 0.085, 0.05];
+    const a = await ui.screen(from), b = await ui.screen(to);
+    await ui.drag([a, [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], b]);
+    const painted = await until(async () => { const s = await state(); return s.scalp.painted > 0 && s; }, 'the paint stroke');
+    assert.ok(painted.scalp.painted > 20, `${painted.scalp.painted} triangles painted`);
+    assert.ok(painted.scalp.growStrands > 0 && painted.scalp.growStrands < painted.strands, `${painted.scalp.growStrands} strands to grow`);
+    assert.equal(painted.strands, 1200, 'painting leaves the hair alone');
+    await until(() => page.evaluate(n => window.studio.view.scalpShown() === n, painted.scalp.painted), 'the painted patch drawn');
+    await page.screenshot({ path: path.join(artifacts, 'studio-scalp-paint.png') });
+
+    // A paint request without a camera, straight to the server: refused, the mask as it was.
+    const bad = await post('scalp/paint', { shape: 'brush', points: [10, 10] });
+    assert.equal(bad.status, 400);
+    assert.equal((await state()).scalp.revision, painted.scalp.revision);
+
+    // Grow: the groom's density on the painted patch, every root under the stroke.
+    await page.click('#scalp-grow');
+    const grown = await until(async () => { const s = await state(); return s.message.startsWith('Grew') && s; }, 'the hair grown on the scalp', 60_000);
+    assert.equal(grown.strands, painted.scalp.growStrands);
+    await until(() => page.evaluate(r => window.studio.view.topology?.revision === r && window.studio.lastHeader?.revision === r, grown.revision),
+      'the new strands drawn');
+    const off = await page.evaluate(([from, to, radius]) => {
+      const view = window.studio.view, a = view.project(from), b = view.project(to);
+      const d = [b[0] - a[0], b[1] - a[1]], len2 = d[0] ** 2 + d[1] ** 2;
+      const far = [];
+      for (const root of view.roots()) {
+        const p = view.project(root);
+        const t = Math.max(0, Math.min(1, ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2));
+        const dist = Math.hypot(p[0] - a[0] - t * d[0], p[1] - a[1] - t * d[1]);
+        if (dist > radius + 15) far.push(dist);
+      }
+      return { roots: view.roots().length, far };
+    }, [from, to, radius]);
+    assert.equal(off.roots, grown.strands);
+    assert.deepEqual(off.far, [], `roots off the painted stroke (px from it): ${off.far.slice(0, 5).join(', ')}`);
+    // The hair shown again over the painted scalp (the panel's switch), for the picture.
+    await page.uncheck('#hide-hair');
+    assert.equal(await page.evaluate(() => window.studio.view.lines.visible), true);
+    await page.screenshot({ path: path.join(artifacts, 'studio-scalp-grown.png') });
+    await page.check('#hide-hair');
+
+    // Ctrl+Z in the paint tool takes back the stroke (the scalp is clear again), not the hair; Redo brings it back.
+    await page.keyboard.press('Control+z');
+    const undone = await until(async () => { const s = await state(); return s.scalp.painted === 0 && s; }, 'the stroke undone');
+    assert.equal(undone.strands, grown.strands);
+    await page.click('#redo');
+    await until(async () => (await state()).scalp.painted === painted.scalp.painted, 'the stroke redone');
+
+    // Back to the mesh's own scalp and the full groom for the tests that follow; the hair shows again outside the tool.
+    await page.click('#scalp-colours');
+    await until(async () => (await state()).scalp.painted === start.painted, 'the mesh colours\' scalp');
+    await page.click('#scalp-grow');
+    await until(async () => { const s = await state(); return s.strands === 1200 && s.message.startsWith('Grew') && s; }, 'the full groom', 60_000);
+    await page.click('[data-tool=view]');
+    assert.equal(await page.evaluate(() => window.studio.view.lines.visible), true);
+  });
+
   it('cuts with a finger on a touch screen', async () => {
     // A second page with touch input (Chromium's own touch events, through the DevTools protocol): the same tool
     // code takes pointer events from a finger as from a mouse.

@@ -288,15 +288,68 @@ export class HairView {
   /** The head mesh (binary "HSM1", head space) of a mesh groom, or null to remove it. */
   setHeadMesh(buffer) {
     for (const child of [...this.meshGroup.children]) { this.meshGroup.remove(child); child.geometry?.dispose(); }
+    this.headMesh = null;
     if (!buffer) return;
     const dv = new DataView(buffer);
     if (dv.getUint32(0, true) !== 0x314D5348) throw new Error('not a mesh message');
     const nv = dv.getInt32(4, true), nt = dv.getInt32(8, true);
-    const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(buffer.slice(12, 12 + 12 * nv)), 3));
-    geometry.setIndex(new THREE.BufferAttribute(new Uint32Array(buffer.slice(12 + 12 * nv, 12 + 12 * nv + 12 * nt)), 1));
-    geometry.computeVertexNormals();
-    this.meshGroup.add(new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: 0xd9ad8f, roughness: 0.75 })));
+    const indexed = new THREE.BufferGeometry();
+    indexed.setAttribute('position', new THREE.BufferAttribute(new Float32Array(buffer.slice(12, 12 + 12 * nv)), 3));
+    indexed.setIndex(new THREE.BufferAttribute(new Uint32Array(buffer.slice(12 + 12 * nv, 12 + 12 * nv + 12 * nt)), 1));
+    indexed.computeVertexNormals();
+    // Three vertices of its own per triangle (smooth normals kept), so each triangle can show its own scalp colour.
+    const geometry = indexed.toNonIndexed();
+    indexed.dispose();
+    geometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(9 * nt), 3));
+    this.headMesh = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: 0xffffff, vertexColors: true, roughness: 0.75 }));
+    this.meshTriangles = nt;
+    this.meshGroup.add(this.headMesh);
+    this.applyScalp();
+  }
+
+  /** The painted scalp (binary "HSS1": a byte per triangle of the head mesh), or null. Returns its revision. */
+  setScalpMask(buffer) {
+    if (!buffer) { this.scalpMask = null; this.applyScalp(); return null; }
+    const dv = new DataView(buffer);
+    if (dv.getUint32(0, true) !== 0x31535348) throw new Error('not a scalp message');
+    const revision = dv.getInt32(4, true), n = dv.getInt32(8, true);
+    this.scalpMask = new Uint8Array(buffer, 12, n);
+    this.applyScalp();
+    return revision;
+  }
+
+  /** While painting the scalp: the painted triangles coloured on the head mesh, and the hair hidden if asked. */
+  setPainting(on, hideHair) {
+    this.painting = on;
+    this.lines.visible = !(on && hideHair);
+    this.applyScalp();
+  }
+
+  /** How many painted triangles the head mesh shows in the scalp colour (for the tests). */
+  scalpShown() {
+    if (!this.painting || !this.scalpMask || this.scalpMask.length !== this.meshTriangles) return 0;
+    return this.scalpMask.reduce((n, b) => n + b, 0);
+  }
+
+  applyScalp() {
+    if (!this.headMesh) return;
+    const skin = new THREE.Color(0xd9ad8f), scalp = new THREE.Color(0xc8402e);
+    const attr = this.headMesh.geometry.attributes.color, c = attr.array;
+    const mask = this.painting && this.scalpMask?.length === this.meshTriangles ? this.scalpMask : null;
+    for (let t = 0; t < this.meshTriangles; t++) {
+      const k = mask && mask[t] ? scalp : skin;
+      for (let v = 9 * t; v < 9 * t + 9; v += 3) { c[v] = k.r; c[v + 1] = k.g; c[v + 2] = k.b; }
+    }
+    attr.needsUpdate = true;
+  }
+
+  /** The strands' roots (first particles) as last drawn, world space. */
+  roots() {
+    const topo = this.topology;
+    if (!topo) return [];
+    const p = this.positions, out = [];
+    for (let s = 0; s < topo.strands; s++) { const i = 3 * topo.first[s]; out.push([p[i], p[i + 1], p[i + 2]]); }
+    return out;
   }
 
   render() {

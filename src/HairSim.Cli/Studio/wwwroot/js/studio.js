@@ -1,6 +1,6 @@
 // HairSheet Studio's page: wires the 3D view, the tools, the panel and the keys to the server.
 import { HairView } from './hair-view.js';
-import { ViewTool, CutTool, SelectTool, FitTool, HeadTool } from './tools.js';
+import { ViewTool, CutTool, SelectTool, FitTool, HeadTool, PaintTool } from './tools.js';
 import { command, state, binary } from './api.js';
 
 const $ = id => document.getElementById(id);
@@ -9,8 +9,14 @@ class Studio {
   constructor() {
     this.view = new HairView($('view'));
     this.overlay = $('overlay');
-    this.tools = { view: new ViewTool(this), cut: new CutTool(this), select: new SelectTool(this), fit: new FitTool(this), head: new HeadTool(this) };
-    this.options = { selectShape: 'rectangle', rootsOnly: true, visibleOnly: true, brushRadius: 30 };
+    this.tools = {
+      view: new ViewTool(this), cut: new CutTool(this), select: new SelectTool(this), fit: new FitTool(this), head: new HeadTool(this),
+      paint: new PaintTool(this),
+    };
+    this.options = {
+      selectShape: 'rectangle', rootsOnly: true, visibleOnly: true, brushRadius: 30,
+      paintShape: 'brush', paintMode: 'add', hideHairWhilePainting: true,
+    };
     this.head = { position: [0, 0, 0], yaw: 0, pitch: 0, roll: 0, shake: false };
     this.state = null;
     this.framesReceived = 0;
@@ -65,6 +71,9 @@ class Studio {
       this.meshKey = meshKey;
       this.view.setHeadMesh(s.hasMesh ? await binary('mesh') : null);
     }
+    // The painted scalp, fetched again whenever its revision moves.
+    if (!s.scalp) { if (this.scalpRevision != null) this.scalpRevision = this.view.setScalpMask(null); }
+    else if (s.scalp.revision !== this.scalpRevision) this.scalpRevision = this.view.setScalpMask(await binary('scalp'));
     if (!sameArray(s.selection, this.lastSelection)) { this.lastSelection = s.selection; this.view.setSelection(s.selection); }
     this.showState(s);
   }
@@ -96,8 +105,17 @@ class Studio {
       select: 'Drag to select strands (shift adds, alt removes). Right-drag orbits.',
       fit: 'Draw from the selected strands\u2019 roots the shape they should take.',
       head: 'Drag to move the head, shift-drag to turn it.',
+      paint: 'Paint where hair grows on the head mesh (Alt erases); then Grow on scalp. Right-drag orbits.',
     }[name];
+    // The shape radios show the shape of the tool in use (select and paint each keep their own).
+    const shape = name === 'paint' ? this.options.paintShape : this.options.selectShape;
+    for (const r of document.querySelectorAll('input[name=shape]')) r.checked = r.value === shape;
+    this.view.setPainting(name === 'paint', this.options.hideHairWhilePainting);
+    if (this.state) this.showState(this.state);
   }
+
+  /** Undo and redo act on the scalp's paint strokes while the Paint scalp tool is in use, on the hair otherwise. */
+  get undoTarget() { return this.toolName === 'paint' && this.state?.scalp ? 'scalp/' : ''; }
 
   sendHead() {
     // At most one head message in flight; the latest pose wins.
@@ -137,12 +155,14 @@ class Studio {
 
   bindKeys() {
     window.addEventListener('keydown', e => {
-      if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
       const k = e.key, ctrl = e.ctrlKey || e.metaKey;
-      if (ctrl && (k === 'z' || k === 'Z')) { e.preventDefault(); this.run(() => command(e.shiftKey ? 'redo' : 'undo')); return; }
-      if (ctrl && (k === 'y' || k === 'Y')) { e.preventDefault(); this.run(() => command('redo')); return; }
+      // Keys typed into a field or a list are theirs; a ticked checkbox or radio still lets Ctrl+Z and the like through.
+      const toggle = e.target instanceof HTMLInputElement && (e.target.type === 'checkbox' || e.target.type === 'radio');
+      if ((e.target instanceof HTMLInputElement && !(toggle && ctrl)) || e.target instanceof HTMLSelectElement) return;
+      if (ctrl && (k === 'z' || k === 'Z')) { e.preventDefault(); this.run(() => command(this.undoTarget + (e.shiftKey ? 'redo' : 'undo'))); return; }
+      if (ctrl && (k === 'y' || k === 'Y')) { e.preventDefault(); this.run(() => command(`${this.undoTarget}redo`)); return; }
       if (ctrl) return;
-      const tools = { 1: 'view', 2: 'cut', 3: 'select', 4: 'fit', 5: 'head' };
+      const tools = { 1: 'view', 2: 'cut', 3: 'select', 4: 'fit', 5: 'head', 6: 'paint' };
       if (tools[k]) { this.setTool(tools[k]); return; }
       const views = { F1: 'front', F2: 'side', F3: 'back', F4: 'top' };
       if (views[k]) { e.preventDefault(); this.view.setView(views[k]); return; }
@@ -162,13 +182,27 @@ class Studio {
   bindPanel() {
     for (const b of document.querySelectorAll('[data-tool]')) b.addEventListener('click', () => this.setTool(b.dataset.tool));
     for (const b of document.querySelectorAll('[data-view]')) b.addEventListener('click', () => this.view.setView(b.dataset.view));
-    for (const r of document.querySelectorAll('input[name=shape]')) r.addEventListener('change', () => { this.options.selectShape = r.value; });
+    for (const r of document.querySelectorAll('input[name=shape]')) {
+      r.addEventListener('change', () => { this.options[this.toolName === 'paint' ? 'paintShape' : 'selectShape'] = r.value; });
+    }
     $('roots-only').addEventListener('change', e => { this.options.rootsOnly = e.target.checked; });
     $('visible-only').addEventListener('change', e => { this.options.visibleOnly = e.target.checked; });
     $('brush-radius').addEventListener('input', e => { this.options.brushRadius = +e.target.value; });
     $('clear-selection').addEventListener('click', () => this.run(() => command('select/clear')));
-    $('undo').addEventListener('click', () => this.run(() => command('undo')));
-    $('redo').addEventListener('click', () => this.run(() => command('redo')));
+    $('undo').addEventListener('click', () => this.run(() => command(`${this.undoTarget}undo`)));
+    $('redo').addEventListener('click', () => this.run(() => command(`${this.undoTarget}redo`)));
+    for (const r of document.querySelectorAll('input[name=paint-mode]')) r.addEventListener('change', () => { this.options.paintMode = r.value; });
+    $('hide-hair').addEventListener('change', e => {
+      this.options.hideHairWhilePainting = e.target.checked;
+      this.view.setPainting(this.toolName === 'paint', e.target.checked);
+    });
+    $('scalp-clear').addEventListener('click', () => this.run(() => command('scalp/fill', { to: 'none' })));
+    $('scalp-all').addEventListener('click', () => this.run(() => command('scalp/fill', { to: 'all' })));
+    $('scalp-colours').addEventListener('click', () => this.run(() => command('scalp/fill', { to: 'colours' })));
+    $('scalp-grow').addEventListener('click', () => this.run(() => {
+      this.say('Growing hair on the painted scalp\u2026');
+      return command('scalp/grow');
+    }));
     $('regrow').addEventListener('click', () => this.run(() => command('regrow')));
     $('reset').addEventListener('click', () => this.run(() => command('reset')));
     $('load-file').addEventListener('change', async e => {
@@ -231,8 +265,16 @@ class Studio {
     }
     if (document.activeElement !== $('path')) $('path').value = s.settings.path;
     $('volume').checked = !!s.settings.volume;
-    $('undo').disabled = s.undoCount === 0;
-    $('redo').disabled = s.redoCount === 0;
+    const paintUndo = this.undoTarget !== '';
+    $('undo').disabled = (paintUndo ? s.scalp.undoCount : s.undoCount) === 0;
+    $('redo').disabled = (paintUndo ? s.scalp.redoCount : s.redoCount) === 0;
+    $('undo').title = paintUndo ? 'Undo the last scalp stroke (Ctrl+Z)' : 'Ctrl+Z';
+    $('redo').title = paintUndo ? 'Redo a scalp stroke (Ctrl+Shift+Z or Ctrl+Y)' : 'Ctrl+Shift+Z or Ctrl+Y';
+    const sc = s.scalp;
+    $('scalp-info').textContent = sc
+      ? `${sc.areaCm2.toFixed(0)} cm\u00b2 painted (${sc.painted.toLocaleString()} of ${sc.triangles.toLocaleString()} triangles): grows ${sc.growStrands.toLocaleString()} strands`
+      : 'Grow the mesh head groom to paint its scalp.';
+    $('scalp-grow').disabled = !sc || sc.growing;
     $('regrow').disabled = !s.canRegrow;
     $('pause').checked = s.paused;
     const m = s.metrics, rate = this.received.length;
@@ -247,6 +289,7 @@ class Studio {
       ['largest stretch', `${(100 * m.maxEdgeStretch).toFixed(3)} %`],
       ['deepest penetration', `${m.maxPenetrationMm.toFixed(3)} mm (${m.particlesInside} inside)`],
       ['undo / redo', `${s.undoCount} / ${s.redoCount}`],
+      ...(s.scalp ? [['scalp strokes undo / redo', `${s.scalp.undoCount} / ${s.scalp.redoCount}`]] : []),
       ['time', `${s.simTime.toFixed(1)} s${s.paused ? ' (paused)' : ''}`],
     ];
     $('figures').replaceChildren(...rows.map(([k, v]) => {

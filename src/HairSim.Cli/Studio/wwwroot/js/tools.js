@@ -45,26 +45,53 @@ export class CutTool extends Tool {
 /** Rectangle, lasso or brush; shift adds to the selection, alt takes away. */
 export class SelectTool extends Tool {
   down(p, e) { super.down(p); this.mode = e.shiftKey ? 'add' : e.altKey || e.ctrlKey ? 'subtract' : 'replace'; }
+  get shape() { return this.studio.options.selectShape; }
+  get colour() { return '#ffb35a'; }
   draw(g) {
     if (!this.points) return;
-    const shape = this.studio.options.selectShape, colour = '#ffb35a';
+    const shape = this.shape, colour = this.colour;
     if (shape === 'rectangle') {
       const [a, b] = [this.points[0], this.points[this.points.length - 1]];
       g.strokeStyle = colour; g.setLineDash([6, 4]); g.strokeRect(a[0], a[1], b[0] - a[0], b[1] - a[1]); g.setLineDash([]);
     } else if (shape === 'lasso') {
       polyline(g, [...this.points, this.points[0]], colour);
     } else {
-      g.fillStyle = '#ffb35a33';
+      g.fillStyle = `${colour}33`;
       for (const q of this.points) { g.beginPath(); g.arc(q[0], q[1], this.studio.options.brushRadius, 0, 2 * Math.PI); g.fill(); }
     }
   }
-  async finish(points) {
-    const shape = this.studio.options.selectShape;
+  /** The stroke as the server reads it (a rectangle is its two corners), or null when it is too short to send. */
+  strokePoints(points) {
+    const shape = this.shape;
     if (shape === 'rectangle') points = [points[0], points[points.length - 1]];
-    if (shape === 'lasso' && points.length < 3) return;
+    if (shape === 'lasso' && points.length < 3) return null;
+    return this.flat(points);
+  }
+  async finish(points) {
+    const flat = this.strokePoints(points);
+    if (!flat) return;
     await this.studio.run(() => command('select', {
-      shape, mode: this.mode, points: this.flat(points), radius: this.studio.options.brushRadius,
+      shape: this.shape, mode: this.mode, points: flat, radius: this.studio.options.brushRadius,
       rootsOnly: this.studio.options.rootsOnly, visibleOnly: this.studio.options.visibleOnly,
+      camera: this.studio.view.strokeCamera(),
+    }));
+  }
+}
+
+/**
+ * Paints where hair grows on a head mesh (or erases it), with the same rectangle, lasso and brush strokes as Select;
+ * Alt erases and Shift paints whatever the panel's mode. The server's ScalpPaint marks the triangles the stroke
+ * covers that face the camera and are not hidden by the mesh; Grow on scalp puts the hair there.
+ */
+export class PaintTool extends SelectTool {
+  down(p, e) { Tool.prototype.down.call(this, p); this.mode = e.altKey ? 'erase' : e.shiftKey ? 'add' : this.studio.options.paintMode; }
+  get shape() { return this.studio.options.paintShape; }
+  get colour() { return this.mode === 'erase' ? '#7fd0ff' : '#ff5a4a'; }
+  async finish(points) {
+    const flat = this.strokePoints(points);
+    if (!flat) return;
+    await this.studio.run(() => command('scalp/paint', {
+      shape: this.shape, mode: this.mode, points: flat, radius: this.studio.options.brushRadius,
       camera: this.studio.view.strokeCamera(),
     }));
   }
