@@ -168,6 +168,9 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
     await page.mouse.click(cx, cy);
     await until(() => page.evaluate(() => document.querySelector('#message').classList.contains('error')), 'the refusal');
     assert.match(await page.textContent('#message'), /rectangle/);
+    await page.check('input[name=shape][value=lasso]');
+    await page.mouse.click(cx, cy);
+    await until(async () => /lasso/.test(await page.textContent('#message')), 'the lasso refused');
     assert.equal((await state()).scalp.revision, start.revision);
 
     // Clear, then a brush stroke across the top of the forehead.

@@ -89,7 +89,7 @@ export class PaintTool extends SelectTool {
   get colour() { return this.mode === 'erase' ? '#7fd0ff' : '#ff5a4a'; }
   async finish(points) {
     const flat = this.strokePoints(points);
-    if (!flat) return;
+    if (!flat) { this.studio.say('A lasso needs at least three points: draw around the area to paint.', true); return; }
     await this.studio.run(() => command('scalp/paint', {
       shape: this.shape, mode: this.mode, points: flat, radius: this.studio.options.brushRadius,
       camera: this.studio.view.strokeCamera(),
