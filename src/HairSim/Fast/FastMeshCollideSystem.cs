@@ -38,13 +38,16 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     /// <summary>Particles past a cut arrive as pins (never pushed); midpoints are tested only between live particles, as the reference does.</summary>
     bool IStrandChunkSystem.TakesCutStrands => true;
 
-    bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
+    unsafe bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {
         _colliders = _scene?.MeshColliderArray ?? [];
         int n = _colliders.Length;
         if (_poses.Length < ctx.Substeps * n) _poses = new MeshCollideSystem.Pose[ctx.Substeps * n];
         for (int s = 0; s < ctx.Substeps; s++)
             for (int m = 0; m < n; m++) _poses[s * n + m] = new MeshCollideSystem.Pose(ctx.MeshPoseAt(s, m, _colliders));
+        // The calling thread's memos are made here, in the first frame, not on the first chunk it happens to take:
+        // which chunks a thread takes varies, and a step must allocate nothing once the scene runs.
+        for (int m = 0; m < n; m++) CornerMemo.For(m, _colliders[m].Field);
         return true;
     }
 
