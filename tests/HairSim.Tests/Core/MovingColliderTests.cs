@@ -10,28 +10,11 @@ namespace HairSim.Tests.Core;
 /// </summary>
 public class MovingColliderTests
 {
-    private const int Strands = 64, N = 16;
-    private const float Spacing = 0.015f, Radius = 0.02f, BarY = -0.15f;
-
-    /// <summary>64 strands of 16 particles (chunk-sized) hanging from a row of roots along x, limp, pinned at the root.</summary>
-    private static HairScene Curtain(SolverPath path)
-    {
-        var w = new HairWorld(1, Strands, N);
-        var pts = new Vector3[N];
-        for (int s = 0; s < Strands; s++)
-        {
-            for (int k = 0; k < N; k++) pts[k] = new Vector3(-0.08f + 0.16f * s / (Strands - 1), -Spacing * k, 0.001f * (s % 3));
-            w.SetStrand(s, pts, pinned: 1);
-        }
-        return new HairScene(w, new SimulationSettings { Path = path, Bend = BendModel.Limp });
-    }
+    private const float Radius = 0.02f, BarY = -0.15f;
 
     /// <summary>A horizontal bar across the curtain at height <see cref="BarY"/>, at depth z, fixed in the world.</summary>
     private static Collider Bar(float z) =>
         Collider.Capsule(new Vector3(-0.2f, BarY, z), new Vector3(0.2f, BarY, z), Radius).InWorldSpace();
-
-    /// <summary>The bar's depth at frame f: behind the hair, then through it at 5 cm a frame (3 m/s, more than its 4 cm width), then held in front.</summary>
-    private static float BarZ(int f) => -0.075f + 0.05f * Math.Clamp(f - 10, 0, 3);
 
     private static float DeepestInside(HairWorld w, in Collider c)
     {
@@ -43,7 +26,7 @@ public class MovingColliderTests
     [Fact]
     public void Moving_a_collider_keeps_the_pipeline_and_bad_moves_change_nothing()
     {
-        var scene = Curtain(SolverPath.Fast);
+        var scene = SweptCurtain.Build(SolverPath.Fast);
         scene.AddCollider(Collider.Sphere(new Vector3(0f, 0.1f, 0f), 0.05f)); // thicker than a segment: no segment test
         scene.AddCollider(Bar(-0.06f));
         var sim = new HairSimulation(scene);
@@ -72,7 +55,7 @@ public class MovingColliderTests
     [Fact]
     public void A_sphere_that_becomes_thinner_than_a_segment_brings_in_the_segment_test()
     {
-        var scene = Curtain(SolverPath.Reference);
+        var scene = SweptCurtain.Build(SolverPath.Reference);
         scene.AddCollider(Collider.Sphere(new Vector3(0f, -0.1f, 0.1f), 0.05f));
         var sim = new HairSimulation(scene);
         Assert.DoesNotContain(SegmentCollideSystem.SystemName, sim.Pipeline.SystemNames);
@@ -83,7 +66,7 @@ public class MovingColliderTests
     [Fact]
     public void A_moved_collider_is_carried_across_the_substeps_and_a_jump_snaps()
     {
-        var scene = Curtain(SolverPath.Reference);
+        var scene = SweptCurtain.Build(SolverPath.Reference);
         scene.Settings.Substeps = 5;
         scene.Settings.Guards = false; // exactly five substeps
         var a = Collider.Capsule(new Vector3(-0.1f, -0.1f, -0.05f), new Vector3(0.1f, -0.12f, -0.05f), 0.02f).InWorldSpace();
@@ -137,41 +120,26 @@ public class MovingColliderTests
     private static void AssertNear(Vector3 expected, Vector3 actual) =>
         Assert.True(Vector3.Distance(expected, actual) < 1e-6f, $"expected {expected}, got {actual}");
 
-    /// <summary>The frame the bar reaches its place in front of the hair.</summary>
-    private const int Arrival = 13;
-
-    /// <summary>Strands the bar has not moved: every particle within 5 mm of the roots' plane z ≈ 0.</summary>
-    private static int StrandsUntouched(HairWorld w)
-    {
-        int untouched = 0;
-        for (int s = 0; s < Strands; s++)
-        {
-            float moved = 0f;
-            for (int k = 0; k < N; k++) moved = MathF.Max(moved, MathF.Abs(w.GetPosition(w.StrandFirst[s] + k).Z - 0.001f * (s % 3)));
-            if (moved < 5e-3f) untouched++;
-        }
-        return untouched;
-    }
 
     [Theory]
     [InlineData(SolverPath.Reference)]
     [InlineData(SolverPath.Fast)]
     public void A_fast_bar_sweeps_the_hair_along_and_the_hair_stays_out_of_it(SolverPath path)
     {
-        var scene = Curtain(path);
-        scene.AddCollider(Bar(BarZ(0)));
+        var scene = SweptCurtain.Build(path);
+        scene.AddCollider(Bar(SweptCurtain.BarZ(0)));
         var sim = new HairSimulation(scene);
         var pipeline = sim.Pipeline;
         float deepest = 0f;
         for (int f = 1; f <= 40; f++)
         {
-            var bar = Bar(BarZ(f));
+            var bar = Bar(SweptCurtain.BarZ(f));
             scene.SetCollider(0, bar);
             sim.Step(1f / 60f);
             deepest = MathF.Max(deepest, DeepestInside(scene.World, bar));
             // The bar passes every strand: pushed, each one swings up over it or under it (a hanging strand cannot reach round
             // the bar's front 7.5 cm ahead of the roots).
-            if (f == Arrival) Assert.Equal(0, StrandsUntouched(scene.World));
+            if (f == SweptCurtain.Arrival) Assert.Equal(0, SweptCurtain.StrandsUntouched(scene.World));
         }
         Assert.Same(pipeline, sim.Pipeline);
         Assert.Equal(0, scene.World.CountNonFinite());
@@ -182,58 +150,58 @@ public class MovingColliderTests
     public void Without_the_substeps_the_same_sweep_leaves_hair_behind_the_bar()
     {
         // The control for the sweep above: with one substep per frame the bar's 5 cm moves jump over the strands it should push.
-        var scene = Curtain(SolverPath.Reference);
+        var scene = SweptCurtain.Build(SolverPath.Reference);
         scene.Settings.Substeps = 1;
         scene.Settings.Guards = false;
-        scene.AddCollider(Bar(BarZ(0)));
+        scene.AddCollider(Bar(SweptCurtain.BarZ(0)));
         var sim = new HairSimulation(scene);
-        for (int f = 1; f <= Arrival; f++) { scene.SetCollider(0, Bar(BarZ(f))); sim.Step(1f / 60f); }
-        Assert.Equal(Strands, StrandsUntouched(scene.World));
+        for (int f = 1; f <= SweptCurtain.Arrival; f++) { scene.SetCollider(0, Bar(SweptCurtain.BarZ(f))); sim.Step(1f / 60f); }
+        Assert.Equal(SweptCurtain.Strands, SweptCurtain.StrandsUntouched(scene.World));
     }
 
     [Fact]
     public void The_guards_raise_the_substeps_for_a_fast_collider_as_for_a_fast_head()
     {
-        var scene = Curtain(SolverPath.Reference);
+        var scene = SweptCurtain.Build(SolverPath.Reference);
         scene.Settings.Substeps = 1;
         scene.AddCollider(Bar(-0.1f));
         var sim = new HairSimulation(scene);
         sim.Step(1f / 60f);
         scene.SetCollider(0, Bar(0.1f)); // 20 cm in a frame: at most MaxHeadTravel × the 15 mm segment per substep
         sim.Step(1f / 60f);
-        Assert.Equal((int)Math.Ceiling(0.2 / (scene.Settings.MaxHeadTravel * Spacing)), sim.Pipeline.LastFrame.Substeps);
+        Assert.Equal((int)Math.Ceiling(0.2 / (scene.Settings.MaxHeadTravel * SweptCurtain.Spacing)), sim.Pipeline.LastFrame.Substeps);
     }
 
     [Fact]
     public void Fast_and_reference_paths_agree_while_a_collider_moves_and_chunks_give_the_same_bits()
     {
-        var reference = Curtain(SolverPath.Reference);
-        var chunked = Curtain(SolverPath.Fast);
-        var plain = Curtain(SolverPath.Fast);
+        var reference = SweptCurtain.Build(SolverPath.Reference);
+        var chunked = SweptCurtain.Build(SolverPath.Fast);
+        var plain = SweptCurtain.Build(SolverPath.Fast);
         var sims = new[] { new HairSimulation(reference), new HairSimulation(chunked), new HairSimulation(plain) };
-        foreach (var sim in sims) sim.Scene.AddCollider(Bar(BarZ(0)));
+        foreach (var sim in sims) sim.Scene.AddCollider(Bar(SweptCurtain.BarZ(0)));
         sims[2].Pipeline.UseStrandChunks = false;
         Assert.Equal(FastPathInfo.Avx512, sims[1].Pipeline.UsesStrandChunks);
-        for (int f = 1; f <= Arrival; f++)
+        for (int f = 1; f <= SweptCurtain.Arrival; f++)
         {
-            foreach (var sim in sims) { sim.Scene.SetCollider(0, Bar(BarZ(f))); sim.Step(1f / 60f); }
+            foreach (var sim in sims) { sim.Scene.SetCollider(0, Bar(SweptCurtain.BarZ(f))); sim.Step(1f / 60f); }
             Assert.True(chunked.World.BitEquals(plain.World), $"chunks and the system-by-system fast path differ after frame {f}");
         }
         float worst = 0f;
         for (int i = 0; i < reference.World.ParticleCount; i++)
             worst = MathF.Max(worst, Vector3.Distance(reference.World.GetPosition(i), chunked.World.GetPosition(i)));
         Assert.True(worst < 2e-3f, $"fast and reference differ by {worst * 1000:F2} mm");
-        Assert.Equal(0, StrandsUntouched(reference.World) + StrandsUntouched(chunked.World));
+        Assert.Equal(0, SweptCurtain.StrandsUntouched(reference.World) + SweptCurtain.StrandsUntouched(chunked.World));
     }
 
     [Fact]
     public void Moving_a_collider_every_frame_allocates_nothing()
     {
-        var scene = Curtain(SolverPath.Fast);
-        scene.AddCollider(Bar(BarZ(0)));
+        var scene = SweptCurtain.Build(SolverPath.Fast);
+        scene.AddCollider(Bar(SweptCurtain.BarZ(0)));
         scene.AddCollider(Collider.Sphere(new Vector3(0f, 0.1f, 0f), 0.05f));
         var sim = new HairSimulation(scene);
-        for (int f = 1; f <= 20; f++) { scene.SetCollider(0, Bar(BarZ(f))); sim.Step(1f / 60f); }
+        for (int f = 1; f <= 20; f++) { scene.SetCollider(0, Bar(SweptCurtain.BarZ(f))); sim.Step(1f / 60f); }
         long before = GC.GetAllocatedBytesForCurrentThread();
         for (int f = 21; f <= 40; f++)
         {

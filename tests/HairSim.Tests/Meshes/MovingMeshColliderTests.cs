@@ -1,6 +1,7 @@
 using System.Numerics;
 using HairSim.Fast;
 using HairSim.Meshes;
+using HairSim.Tests.Core;
 using Xunit;
 
 namespace HairSim.Tests.Meshes;
@@ -12,52 +13,21 @@ namespace HairSim.Tests.Meshes;
 /// </summary>
 public class MovingMeshColliderTests
 {
-    private const int Strands = 64, N = 16;
-    private const float Spacing = 0.015f, BarY = -0.15f;
+    private const float BarY = -0.15f;
 
     /// <summary>A bar 40 cm long and 4 cm thick (an ellipsoid mesh), baked at 2.5 mm, centred on the origin along x.</summary>
     private static readonly SignedDistanceField BarField =
         SignedDistanceField.Bake(TriangleMesh.Ellipsoid(Vector3.Zero, new Vector3(0.2f, 0.02f, 0.02f), 16, 48), 0.0025f);
 
-    /// <summary>64 strands of 16 particles (chunk-sized) hanging from a row of roots along x, limp, pinned at the root.</summary>
-    private static HairScene Curtain(SolverPath path)
-    {
-        var w = new HairWorld(1, Strands, N);
-        var pts = new Vector3[N];
-        for (int s = 0; s < Strands; s++)
-        {
-            for (int k = 0; k < N; k++) pts[k] = new Vector3(-0.08f + 0.16f * s / (Strands - 1), -Spacing * k, 0.001f * (s % 3));
-            w.SetStrand(s, pts, pinned: 1);
-        }
-        return new HairScene(w, new SimulationSettings { Path = path, Bend = BendModel.Limp });
-    }
-
     private static RigidTransform BarAt(float z) => new(new Vector3(0f, BarY, z), Quaternion.Identity);
 
-    /// <summary>The bar's depth at frame f: behind the hair, then through it at 5 cm a frame (3 m/s, more than its 4 cm width), then held in front.</summary>
-    private static float BarZ(int f) => -0.075f + 0.05f * Math.Clamp(f - 10, 0, 3);
-
-    private const int Arrival = 13;
-
+    
     private static float DeepestInside(HairWorld w, MeshCollider c)
     {
         var pose = c.PoseFor(w.Head);
         float deepest = 0f;
         for (int i = 0; i < w.ParticleCount; i++) deepest = MathF.Max(deepest, -c.Field.Distance(pose.InverseTransformPoint(w.GetPosition(i))));
         return deepest;
-    }
-
-    /// <summary>Strands the bar has not moved: every particle within 5 mm of the roots' plane z ≈ 0.</summary>
-    private static int StrandsUntouched(HairWorld w)
-    {
-        int untouched = 0;
-        for (int s = 0; s < Strands; s++)
-        {
-            float moved = 0f;
-            for (int k = 0; k < N; k++) moved = MathF.Max(moved, MathF.Abs(w.GetPosition(w.StrandFirst[s] + k).Z - 0.001f * (s % 3)));
-            if (moved < 5e-3f) untouched++;
-        }
-        return untouched;
     }
 
     private static void AssertPose(in RigidTransform expected, in RigidTransform actual, string what)
@@ -69,7 +39,7 @@ public class MovingMeshColliderTests
     [Fact]
     public void A_moved_mesh_is_carried_across_the_substeps_and_a_jump_or_a_teleport_snaps()
     {
-        var scene = Curtain(SolverPath.Reference);
+        var scene = SweptCurtain.Build(SolverPath.Reference);
         scene.Settings.Substeps = 5;
         scene.Settings.Guards = false; // exactly five substeps
         var a = new RigidTransform(new Vector3(0f, -0.1f, -0.05f), Quaternion.CreateFromYawPitchRoll(0.1f, 0f, 0f));
@@ -126,19 +96,19 @@ public class MovingMeshColliderTests
     [InlineData(SolverPath.Fast)]
     public void A_fast_mesh_bar_sweeps_the_hair_along_and_the_hair_stays_out_of_it(SolverPath path)
     {
-        var scene = Curtain(path);
-        var bar = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(BarZ(0)) };
+        var scene = SweptCurtain.Build(path);
+        var bar = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(SweptCurtain.BarZ(0)) };
         scene.AddMeshCollider(bar);
         var sim = new HairSimulation(scene);
         var pipeline = sim.Pipeline;
         float deepest = 0f;
         for (int f = 1; f <= 40; f++)
         {
-            bar.Placement = BarAt(BarZ(f));
+            bar.Placement = BarAt(SweptCurtain.BarZ(f));
             sim.Step(1f / 60f);
             deepest = MathF.Max(deepest, DeepestInside(scene.World, bar));
             // Held for all substeps at its frame-end place, the bar would jump 5 cm past the strands; carried, it pushes every one.
-            if (f == Arrival) Assert.Equal(0, StrandsUntouched(scene.World));
+            if (f == SweptCurtain.Arrival) Assert.Equal(0, SweptCurtain.StrandsUntouched(scene.World));
         }
         Assert.Same(pipeline, sim.Pipeline);
         Assert.Equal(0, scene.World.CountNonFinite());
@@ -149,20 +119,20 @@ public class MovingMeshColliderTests
     public void With_one_substep_the_same_sweep_leaves_the_hair_behind_the_bar()
     {
         // The control: one substep per frame and no guards, so the bar's 5 cm moves jump over the strands.
-        var scene = Curtain(SolverPath.Reference);
+        var scene = SweptCurtain.Build(SolverPath.Reference);
         scene.Settings.Substeps = 1;
         scene.Settings.Guards = false;
-        var bar = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(BarZ(0)) };
+        var bar = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(SweptCurtain.BarZ(0)) };
         scene.AddMeshCollider(bar);
         var sim = new HairSimulation(scene);
-        for (int f = 1; f <= Arrival; f++) { bar.Placement = BarAt(BarZ(f)); sim.Step(1f / 60f); }
-        Assert.Equal(Strands, StrandsUntouched(scene.World));
+        for (int f = 1; f <= SweptCurtain.Arrival; f++) { bar.Placement = BarAt(SweptCurtain.BarZ(f)); sim.Step(1f / 60f); }
+        Assert.Equal(SweptCurtain.Strands, SweptCurtain.StrandsUntouched(scene.World));
     }
 
     [Fact]
     public void The_guards_raise_the_substeps_for_a_fast_mesh_as_for_a_fast_head()
     {
-        var scene = Curtain(SolverPath.Reference);
+        var scene = SweptCurtain.Build(SolverPath.Reference);
         scene.Settings.Substeps = 1;
         var bar = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(-0.1f) };
         scene.AddMeshCollider(bar);
@@ -170,48 +140,48 @@ public class MovingMeshColliderTests
         sim.Step(1f / 60f);
         bar.Placement = BarAt(0.1f); // 20 cm in a frame: at most MaxHeadTravel × the 15 mm segment per substep
         sim.Step(1f / 60f);
-        Assert.Equal((int)Math.Ceiling(0.2 / (scene.Settings.MaxHeadTravel * Spacing)), sim.Pipeline.LastFrame.Substeps);
+        Assert.Equal((int)Math.Ceiling(0.2 / (scene.Settings.MaxHeadTravel * SweptCurtain.Spacing)), sim.Pipeline.LastFrame.Substeps);
         // Turning in place: the surface moves by up to the angle × the field's farthest corner.
         bar.Placement = new RigidTransform(new Vector3(0f, BarY, 0.1f), Quaternion.CreateFromYawPitchRoll(0.3f, 0f, 0f));
         sim.Step(1f / 60f);
-        Assert.True(sim.Pipeline.LastFrame.Substeps >= (int)Math.Ceiling(0.3 * 0.2 / (scene.Settings.MaxHeadTravel * Spacing)),
+        Assert.True(sim.Pipeline.LastFrame.Substeps >= (int)Math.Ceiling(0.3 * 0.2 / (scene.Settings.MaxHeadTravel * SweptCurtain.Spacing)),
             $"{sim.Pipeline.LastFrame.Substeps} substeps for a 0.3 rad turn of a 20 cm bar");
     }
 
     [Fact]
     public void Fast_and_reference_paths_agree_while_a_mesh_moves_and_chunks_give_the_same_bits()
     {
-        var scenes = new[] { Curtain(SolverPath.Reference), Curtain(SolverPath.Fast), Curtain(SolverPath.Fast) };
+        var scenes = new[] { SweptCurtain.Build(SolverPath.Reference), SweptCurtain.Build(SolverPath.Fast), SweptCurtain.Build(SolverPath.Fast) };
         var bars = new MeshCollider[3];
         var sims = new HairSimulation[3];
         for (int k = 0; k < 3; k++)
         {
-            bars[k] = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(BarZ(0)) };
+            bars[k] = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(SweptCurtain.BarZ(0)) };
             scenes[k].AddMeshCollider(bars[k]);
             sims[k] = new HairSimulation(scenes[k]);
         }
         sims[2].Pipeline.UseStrandChunks = false;
         Assert.Equal(FastPathInfo.Avx512, sims[1].Pipeline.UsesStrandChunks);
-        for (int f = 1; f <= Arrival; f++)
+        for (int f = 1; f <= SweptCurtain.Arrival; f++)
         {
-            for (int k = 0; k < 3; k++) { bars[k].Placement = BarAt(BarZ(f)); sims[k].Step(1f / 60f); }
+            for (int k = 0; k < 3; k++) { bars[k].Placement = BarAt(SweptCurtain.BarZ(f)); sims[k].Step(1f / 60f); }
             Assert.True(scenes[1].World.BitEquals(scenes[2].World), $"chunks and the system-by-system fast path differ after frame {f}");
         }
         float worst = 0f;
         for (int i = 0; i < scenes[0].World.ParticleCount; i++)
             worst = MathF.Max(worst, Vector3.Distance(scenes[0].World.GetPosition(i), scenes[1].World.GetPosition(i)));
         Assert.True(worst < 2e-3f, $"fast and reference differ by {worst * 1000:F2} mm");
-        Assert.Equal(0, StrandsUntouched(scenes[0].World) + StrandsUntouched(scenes[1].World));
+        Assert.Equal(0, SweptCurtain.StrandsUntouched(scenes[0].World) + SweptCurtain.StrandsUntouched(scenes[1].World));
     }
 
     [Fact]
     public void Moving_a_mesh_every_frame_allocates_nothing()
     {
-        var scene = Curtain(SolverPath.Fast);
-        var bar = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(BarZ(0)) };
+        var scene = SweptCurtain.Build(SolverPath.Fast);
+        var bar = new MeshCollider(BarField, space: ColliderSpace.World) { Placement = BarAt(SweptCurtain.BarZ(0)) };
         scene.AddMeshCollider(bar);
         var sim = new HairSimulation(scene);
-        for (int f = 1; f <= 20; f++) { bar.Placement = BarAt(BarZ(f)); sim.Step(1f / 60f); }
+        for (int f = 1; f <= 20; f++) { bar.Placement = BarAt(SweptCurtain.BarZ(f)); sim.Step(1f / 60f); }
         long before = GC.GetAllocatedBytesForCurrentThread();
         for (int f = 21; f <= 40; f++) { bar.Placement = BarAt(0.05f * MathF.Sin(f)); sim.Step(1f / 60f); }
         Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - before);
