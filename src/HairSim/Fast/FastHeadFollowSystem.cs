@@ -19,6 +19,15 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     private readonly int[] _pinCount, _pinIndex;
     private readonly float[] _pinRest;
     private readonly bool _cache;
+    // Per chunk (at 3 × its first particle): the rest rows PrepareChunk fills, in row layout (RestX, RestY, RestZ, 32
+    // lanes a row), with the edit stamp + 1 and the pinned-row mask they were made for, keyed by the chunk's first strand.
+    // A chunk seen again unedited copies its pinned rows from there: a few vector copies instead of a scalar store per pin.
+    private readonly float[] _pinRows;
+    private readonly long[] _pinRowsAt;
+    private readonly ulong[] _pinRowsMask;
+    // Per strand: the chunk (its first strand) whose block holds this strand's rows. A chunk that started elsewhere
+    // (another frame's chunk boundaries, e.g. a teleport's) overwrote part of the blocks and owns those strands now.
+    private readonly int[] _pinRowsOwner;
 
     /// <param name="world">The world this system runs on (sizes the per-strand pin cache).</param>
     /// <param name="cachePins">Cache each strand's pinned particles until the world is edited (off: scan every substep).</param>
@@ -28,6 +37,9 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         _cache = cachePins;
         int n = cachePins ? world.StrandCount : 0;
         _cachedAt = new long[n]; _pinCount = new int[n]; _pinIndex = new int[n * MaxCachedPins]; _pinRest = new float[n * MaxCachedPins * 3];
+        _pinRows = new float[cachePins ? 3 * world.ParticleCount : 0]; _pinRowsAt = new long[n]; _pinRowsMask = new ulong[n];
+        _pinRowsOwner = new int[n];
+        Array.Fill(_pinRowsOwner, -1);
     }
 
     public string Name => HeadFollowSystem.SystemName;
@@ -77,6 +89,46 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     /// per-strand pin cache (the world's rest arrays are not touched), else from the world.
     /// </summary>
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
+    {
+        bool rowsCached = _cache && _cachedAt.Length == w.StrandCount && _pinRows.Length == 3 * w.ParticleCount;
+        long at = w.EditStamp + 1L;
+        if (rowsCached && _pinRowsAt[s0] == at && _pinRowsMask[s0] == chunk.PinnedRows && OwnsBlock(s0))
+        {
+            CopyPinRows(chunk, fromBlock: true);
+            return;
+        }
+        FillPinRows(w, s0, chunk);
+        if (!rowsCached) return;
+        CopyPinRows(chunk, fromBlock: false);
+        _pinRowsAt[s0] = at; _pinRowsMask[s0] = chunk.PinnedRows;
+        for (int s = s0; s < s0 + StrandChunk.Lanes; s++) _pinRowsOwner[s] = s0;
+    }
+
+    private bool OwnsBlock(int s0)
+    {
+        for (int s = s0; s < s0 + StrandChunk.Lanes; s++) if (_pinRowsOwner[s] != s0) return false;
+        return true;
+    }
+
+    /// <summary>The chunk's pinned rest rows to (or from) its block of <see cref="_pinRows"/>.</summary>
+    private void CopyPinRows(scoped StrandChunk chunk, bool fromBlock)
+    {
+        const int L = StrandChunk.Lanes;
+        int block = 3 * chunk.Firsts[0], h = chunk.Height;
+        for (ulong rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
+        {
+            int k = BitOperations.TrailingZeroCount(rows);
+            for (int f = 0; f < 3; f++)
+            {
+                var stored = _pinRows.AsSpan(block + (f * h + k) * L, L);
+                var row = MemoryMarshal.CreateSpan(ref chunk.Row(StrandChunk.RestX + f, k), L);
+                if (fromBlock) stored.CopyTo(row); else row.CopyTo(stored);
+            }
+        }
+    }
+
+    /// <summary>The rest positions of the chunk's pinned particles, into its pinned rest rows (zero where a lane has no pin there).</summary>
+    private void FillPinRows(HairWorld w, int s0, scoped StrandChunk chunk)
     {
         for (ulong rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
         {
