@@ -2,8 +2,12 @@ using System.Numerics;
 
 namespace HairSim.Measurement;
 
-/// <summary>What <see cref="CrossingSheets.Run"/> found: crossings measured, how many of them the upper sheet ended below the lower, the mean gap (as a share of the strand length) and non-finite values.</summary>
-public readonly record struct CrossingResult(int Crossings, int Sunk, double MeanGap, int NonFinite)
+/// <summary>
+/// What <see cref="CrossingSheets.Run"/> found: crossings measured, how many of them the upper sheet ended below the
+/// lower, the mean gap (as a share of the strand length), non-finite values, and the parts (volume passes) per frame
+/// the pipeline stepped on average.
+/// </summary>
+public readonly record struct CrossingResult(int Crossings, int Sunk, double MeanGap, int NonFinite, double PartsPerFrame = 1)
 {
     public double SunkShare => Crossings > 0 ? (double)Sunk / Crossings : double.NaN;
 }
@@ -49,8 +53,9 @@ public static class CrossingSheets
         var scene = Scene(volume, path, drop, scale);
         var sim = new HairSimulation(scene, dispatcher: dispatcher);
         int frames = (int)Math.Ceiling(3.0 * Math.Sqrt(scale) * hz);
-        for (int f = 0; f < frames; f++) sim.Step(1f / hz);
-        return Measure(scene.World, 0.25f * scale);
+        long parts = 0;
+        for (int f = 0; f < frames; f++) { sim.Step(1f / hz); parts += sim.Pipeline.LastFrameParts; }
+        return Measure(scene.World, 0.25f * scale) with { PartsPerFrame = (double)parts / frames };
     }
 
     /// <summary>

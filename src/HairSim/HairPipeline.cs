@@ -69,6 +69,8 @@ public sealed class HairPipeline
 
     /// <summary>Chunks stepped in the last frame, and how many of them went back to the system-by-system path midway (coinciding particles).</summary>
     public (int Stepped, int HandedBack) LastFrameChunks => _chunkFrame ? _chunks!.Counts : default;
+    /// <summary>Into how many parts the last frame was stepped (1 unless a system such as the hair volume asked for shorter ones).</summary>
+    public int LastFrameParts { get; private set; } = 1;
     /// <summary>The context of the last frame (teleport flag, substep length, …).</summary>
     public FrameContext LastFrame => _ctx;
 
@@ -99,24 +101,49 @@ public sealed class HairPipeline
         // hair's natural time), so it behaves the same at 30 and 240 Hz and on a doll or a giant: the frame is then
         // stepped in parts, the head moving a part of the way each time and the substeps shared out between them.
         int parts = 1;
+        bool splits = false;
         if (!teleported)
             foreach (var system in _frameStart)
-                if (system is IFrameSplitter splitter) parts = Math.Max(parts, splitter.PartsOf(_scene, dt, _scale));
+                if (system is IFrameSplitter splitter) { parts = Math.Max(parts, splitter.PartsOf(_scene, dt, _scale)); splits = true; }
         PrepareColliderMotion(teleported, requested);
-        if (parts <= 1) StepPart(dt, headTarget, headMove, delta, teleported, requested.Substeps, 0f, 1f);
-        else
-        {
-            var start = world.Head;
-            int substeps = Math.Max(1, (requested.Substeps + parts - 1) / parts);
-            for (int i = 1; i <= parts; i++)
-            {
-                var target = i == parts ? headTarget : RigidTransform.Interpolate(start, headTarget, i / (float)parts);
-                StepPart(dt / parts, target, (target.Position - world.Head.Position).Length(), RigidTransform.Delta(world.Head, target), false, substeps,
-                    (i - 1) / (float)parts, i == parts ? 1f : i / (float)parts);
-            }
-        }
+        if (parts <= 1 && !splits) { StepPart(dt, headTarget, headMove, delta, teleported, requested.Substeps, 0f, 1f); LastFrameParts = 1; }
+        else LastFrameParts = StepInParts(dt, headTarget, parts, requested.Substeps);
         _scene.CollidersStepped();
         _containment.Collect(_report);
+    }
+
+    /// <summary>
+    /// Steps a frame in parts: <paramref name="parts"/> equal parts to begin with; before each part, a splitter that
+    /// measured a stiff state (<see cref="IFrameSplitter.LongestPart"/>) may cut the rest of the frame finer, into
+    /// equal parts again. The head moves its share of the way each part; the substeps are shared out by time.
+    /// </summary>
+    private int StepInParts(float dt, RigidTransform headTarget, int parts, int requestedSubsteps)
+    {
+        var world = _scene.World;
+        var start = world.Head;
+        int done = 0;
+        double elapsed = 0;
+        while (done < parts)
+        {
+            double remaining = dt - elapsed;
+            double longest = double.PositiveInfinity;
+            foreach (var system in _frameStart)
+                if (system is IFrameSplitter splitter) longest = Math.Min(longest, splitter.LongestPart(_scene, _scale));
+            if (remaining / (parts - done) > longest * (1 + 1e-6))
+                parts = done + (int)Math.Min(IFrameSplitter.MaxParts - done, Math.Ceiling(remaining / longest - 1e-6));
+            int left = parts - done;
+            bool last = left <= 1;
+            double part = last ? remaining : remaining / left;
+            int substeps = parts == 1 ? requestedSubsteps
+                : Math.Max(1, (int)Math.Ceiling(requestedSubsteps * part / dt - 1e-6));
+            float from = (float)(elapsed / dt);
+            elapsed += part;
+            float to = last ? 1f : (float)(elapsed / dt);
+            var target = last ? headTarget : RigidTransform.Interpolate(start, headTarget, to);
+            StepPart((float)part, target, (target.Position - world.Head.Position).Length(), RigidTransform.Delta(world.Head, target), false, substeps, from, to);
+            done++;
+        }
+        return parts;
     }
 
     /// <summary>

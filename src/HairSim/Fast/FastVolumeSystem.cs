@@ -18,6 +18,10 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     /// <summary>Frames longer than <see cref="VolumeSettings.MaxStep"/> natural times are stepped in parts (none without the component: a kept pipeline changes nothing).</summary>
     public int PartsOf(HairScene scene, float dt, GroomScale scale) => scene.GetComponent<VolumeSettings>()?.PartsOf(dt, scale) ?? 1;
 
+    /// <summary>Shorter parts while the last pass found the push stiff (<see cref="VolumeSettings.LongestPart"/>).</summary>
+    public double LongestPart(HairScene scene, GroomScale scale) =>
+        scene.GetComponent<VolumeSettings>()?.LongestPart(_curvature, _cell, scale) ?? double.PositiveInfinity;
+
     /// <summary>Private splat grids (and splat jobs): fixed, so the bits do not depend on the thread count.</summary>
     public const int Partitions = 4;
     private const int MaxJobs = 1024;
@@ -33,6 +37,10 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     // S the friction share (0 where there is no hair).
     private Vector128<float>[] _change = [];
     private readonly Vector3[] _min = new Vector3[MaxJobs], _max = new Vector3[MaxJobs];
+    // The largest over-density curvature each node job found (max: the same whatever the thread count), and over all
+    // of them with the cell it was measured on, for the next part's length.
+    private readonly float[] _jobCurvature = new float[MaxJobs];
+    private float _curvature, _cell;
     // Per particle of the sample strands: D and S interpolated there (zeros where nothing was sampled), so a particle's
     // change is Σ t·(D − S·v) over its two samples.
     private float[] _pushX = [], _pushY = [], _pushZ = [], _share = [];
@@ -102,6 +110,9 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         dispatcher.Run(Partitions, _splatJob);
         dispatcher.Run(_nodeJobs, _reduceJob);
         dispatcher.Run(_nodeJobs, _gradientJob);
+        float curvature = 0f;
+        for (int j = 0; j < _nodeJobs; j++) curvature = MathF.Max(curvature, _jobCurvature[j]);
+        _curvature = curvature; _cell = _grid.Cell;
         dispatcher.Run(_sheetJobs, _gatherJob);
     }
 
@@ -236,7 +247,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         int nx = g.Nx, ny = g.Ny, nz = g.Nz, sy = nx, sz = nx * ny;
         int zBegin = (int)((long)nz * job / _nodeJobs), zEnd = (int)((long)nz * (job + 1) / _nodeJobs);
         var p = _p;
-        float half = -0.5f * _push, maxPush = _maxPush, friction = _friction;
+        float half = -0.5f * _push, maxPush = _maxPush, friction = _friction, curvature = 0f;
         // Row by row (no divisions to find a node's x, y, z).
         for (int z = zBegin; z < zEnd; z++)
             for (int y = 0; y < ny; y++)
@@ -254,12 +265,15 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
                     float rho = sum.GetElement(0);
                     if (rho > VolumeSystem.MinDensity)
                     {
+                        float pk2 = 2f * p[k];
+                        curvature = MathF.Max(curvature, MathF.Max(MathF.Abs(px1 - pk2 + px0), MathF.Max(MathF.Abs(py1 - pk2 + py0), MathF.Abs(pz1 - pk2 + pz0))));
                         float pull = friction / rho;
                         _change[k] = Vector128.Create(dx + pull * sum.GetElement(1), dy + pull * sum.GetElement(2), dz + pull * sum.GetElement(3), friction);
                     }
                     else _change[k] = Vector128.Create(dx, dy, dz, 0f);
                 }
             }
+        _jobCurvature[job] = curvature;
     }
 
     private void GatherJob(int job)

@@ -72,4 +72,13 @@ public interface IFrameSplitter
 {
     /// <summary>Into how many parts a frame of <paramref name="dt"/> seconds must be cut (1 = none). May throw for bad settings, before anything moves.</summary>
     int PartsOf(HairScene scene, float dt, GroomScale scale);
+
+    /// <summary>
+    /// The longest part, in seconds, the state this system last measured can take without going unstable (asked before
+    /// every part; the rest of the frame is then cut into equal parts no longer than this). Infinity: no limit.
+    /// </summary>
+    double LongestPart(HairScene scene, GroomScale scale) => double.PositiveInfinity;
+
+    /// <summary>The most parts a frame is ever cut into.</summary>
+    public const int MaxParts = 64;
 }

@@ -62,7 +62,31 @@ public sealed class VolumeSettings
     internal const double MaxPushPerPass = 0.5;
 
     /// <summary>The most parts a frame is cut into for the volume (a 1 cm doll at 30 Hz needs 9 at the default MaxStep, 34 at 1/32).</summary>
-    public const int MaxParts = 64;
+    public const int MaxParts = IFrameSplitter.MaxParts;
+
+    /// <summary>
+    /// The stability bound of the push: a pass of length dt is stable while Stiffness · 1 g · dt² / cell × H stays
+    /// below this, with H the largest curvature of the over-density over the grid's hair (the second difference of P
+    /// between neighbouring nodes, per cell²). Measured on the crossing sheets and the reference groom: a sheet as
+    /// sampled (H ≈ 3.3) and the shaken reference groom (H ≈ 2.4 … 3.1) pass at MaxStep 1/8; a layer that lands on
+    /// another and starts to churn (H ≈ 8 … 9) is cut to about 1/16 … 1/32 natural time until it rests (H ≈ 3.7).
+    /// </summary>
+    internal const double StabilityLimit = 4.5;
+
+    /// <summary>Passes are never shorter than MaxStep / this (4: 1/32 natural time at the default MaxStep): what a stiff frame may cost at most, 4× the volume's quiet cost.</summary>
+    public const int MaxRefine = 4;
+
+    /// <summary>
+    /// The longest pass the push stays stable for, in seconds, given the largest over-density curvature
+    /// <paramref name="curvature"/> (per cell²) the last pass measured on a grid of <paramref name="cell"/> metres; never
+    /// shorter than MaxStep / <see cref="MaxRefine"/> natural times. Infinity when nothing is stiff.
+    /// </summary>
+    internal double LongestPart(double curvature, double cell, in GroomScale scale)
+    {
+        double stiff = Stiffness * BendProfile.StandardGravity * curvature / cell;
+        if (!(stiff > 0) || !double.IsFinite(stiff)) return double.PositiveInfinity;
+        return Math.Max(Math.Sqrt(StabilityLimit / stiff), MaxStep * scale.NaturalTime / MaxRefine);
+    }
 
     /// <summary>Into how many parts a frame of dt seconds is stepped for these settings.</summary>
     public int PartsOf(float dt, in GroomScale scale)

@@ -24,6 +24,14 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
     /// <summary>Frames longer than <see cref="VolumeSettings.MaxStep"/> natural times are stepped in parts (none without the component: a kept pipeline changes nothing).</summary>
     public int PartsOf(HairScene scene, float dt, GroomScale scale) => scene.GetComponent<VolumeSettings>()?.PartsOf(dt, scale) ?? 1;
 
+    /// <summary>Shorter parts while the last pass found the push stiff (<see cref="VolumeSettings.LongestPart"/>).</summary>
+    public double LongestPart(HairScene scene, GroomScale scale) =>
+        scene.GetComponent<VolumeSettings>()?.LongestPart(_curvature, _cell, scale) ?? double.PositiveInfinity;
+
+    // The largest over-density curvature (second difference of P along an axis, per cell²) at a node holding hair in the
+    // last pass, and the cell it was measured on.
+    private double _curvature, _cell;
+
     /// <summary>What a pipeline that keeps every system runs when the scene has no volume: all the work, no change.</summary>
     internal static readonly VolumeSettings InertSettings = VolumeSettings.Inert;
 
@@ -86,6 +94,7 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
         double maxPush = VolumeSettings.MaxPushPerPass * _grid.Cell / dt;
         double f = 1.0 - Math.Exp(-settings.Friction * dt / ctx.Scale.NaturalTime);
         // At each node, the change a particle there takes: Δv = D − S·v, with D = push + S·(mean velocity), S the friction share.
+        double curvature = 0;
         for (int z = 0; z < _grid.Nz; z++)
             for (int y = 0; y < _grid.Ny; y++)
                 for (int x = 0; x < _grid.Nx; x++)
@@ -95,9 +104,16 @@ public sealed class VolumeSystem : IHairSystem, IFrameSplitter
                         -push * 0.5 * (P(x, y, z + 1) - P(x, y, z - 1)));
                     if (d.Length > maxPush) d *= maxPush / d.Length;
                     double share = 0;
-                    if (_rho[k] > MinDensity) { share = f; d += f / _rho[k] * new Vec3d(_mx[k], _my[k], _mz[k]); }
+                    if (_rho[k] > MinDensity)
+                    {
+                        share = f; d += f / _rho[k] * new Vec3d(_mx[k], _my[k], _mz[k]);
+                        double p2 = 2 * _p[k];
+                        curvature = Math.Max(curvature, Math.Max(Math.Abs(P(x + 1, y, z) - p2 + P(x - 1, y, z)),
+                            Math.Max(Math.Abs(P(x, y + 1, z) - p2 + P(x, y - 1, z)), Math.Abs(P(x, y, z + 1) - p2 + P(x, y, z - 1)))));
+                    }
                     _dx[k] = d.X; _dy[k] = d.Y; _dz[k] = d.Z; _s[k] = share;
                 }
+        _curvature = curvature; _cell = _grid.Cell;
 
         bool inert = settings.IsInert;
         for (int q = 0; q < w.SheetCount; q++)
