@@ -8,7 +8,8 @@ namespace HairSim.Fast;
 /// Hair volume, fast path: the reference <see cref="VolumeSystem"/>'s steps in single precision, in parallel passes
 /// (bounds, splat, reduce, node changes, sample and spread), with node data packed so a corner is one 128-bit load.
 /// The splat writes into <see cref="Partitions"/> private grids, a fixed number so the sums (and so the results) do not
-/// depend on how many threads run; the reduce pass adds them in order and clears them for the next frame.
+/// depend on how many threads run; the reduce pass adds them in order and clears them for the next frame. The node pass
+/// also finds the largest over-density curvature (a max: the same on any thread count) for the next part's length.
 /// </summary>
 internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
 {
@@ -25,6 +26,8 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     /// <summary>Private splat grids (and splat jobs): fixed, so the bits do not depend on the thread count.</summary>
     public const int Partitions = 4;
     private const int MaxJobs = 1024;
+    /// <summary>Grids of fewer nodes are reduced and turned into changes on the stepping thread, without a fork.</summary>
+    private const int InlineNodes = 1 << 15;
 
     private readonly VolumeGrid _grid = new();
     private readonly VolumeRestCache _rest = new();
@@ -94,7 +97,9 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
             _sum = new Vector128<float>[capacity];
             _change = new Vector128<float>[capacity];
         }
-        _nodeJobs = Math.Min(_grid.Nz, dispatcher.ThreadCount);
+        // A grid of a head of hair holds some thousands of nodes: the node passes are cheaper than a fork, so they run
+        // on this thread unless the grid is large (the same bits either way: every node is computed alone).
+        _nodeJobs = n < InlineNodes ? 1 : Math.Min(_grid.Nz, dispatcher.ThreadCount);
         _invTarget = (float)(1.0 / (settings.Density * (double)rest));
         double dt = ctx.Dt;
         _push = (float)(settings.Stiffness * BendProfile.StandardGravity * dt);
@@ -108,8 +113,12 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         }
 
         dispatcher.Run(Partitions, _splatJob);
-        dispatcher.Run(_nodeJobs, _reduceJob);
-        dispatcher.Run(_nodeJobs, _gradientJob);
+        if (_nodeJobs == 1) { ReduceJob(0); GradientJob(0); }
+        else
+        {
+            dispatcher.Run(_nodeJobs, _reduceJob);
+            dispatcher.Run(_nodeJobs, _gradientJob);
+        }
         float curvature = 0f;
         for (int j = 0; j < _nodeJobs; j++) curvature = MathF.Max(curvature, _jobCurvature[j]);
         _curvature = curvature; _cell = _grid.Cell;

@@ -54,7 +54,9 @@ public sealed class VolumeSettings
     /// The longest time between two volume passes, in natural times √(L / 1 g): a longer frame is stepped in parts (the
     /// substeps shared out between them), so hair behaves the same at 30 and 240 Hz and at every size. 0.125 (the
     /// default) = 20 ms for 25 cm hair (one pass per frame at 60 Hz, two at 30 Hz), 4 ms for a 1 cm doll's, 125 ms for
-    /// a 10 m creature's. At most <see cref="MaxParts"/> parts per frame.
+    /// a 10 m creature's. While the push is stiff (a layer landing on another) the rest of the frame is cut finer, down
+    /// to MaxStep / <see cref="MaxRefine"/> (<see cref="StabilityLimit"/>); quiet hair keeps MaxStep. At most
+    /// <see cref="MaxParts"/> parts per frame.
     /// </summary>
     public float MaxStep { get; set; } = 0.125f;
 

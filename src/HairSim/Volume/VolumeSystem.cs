@@ -4,13 +4,15 @@ namespace HairSim;
 
 /// <summary>
 /// Hair volume (<see cref="VolumeSettings"/>), once per pass before the substeps (a frame longer than
-/// <see cref="VolumeSettings.MaxStep"/> is stepped in parts), reference implementation (scalar, double precision, one thread):
+/// <see cref="VolumeSettings.MaxStep"/> is stepped in parts, and cut finer while the last pass found the push stiff:
+/// <see cref="VolumeSettings.LongestPart"/>), reference implementation (scalar, double precision, one thread):
 /// 1. fit a grid to the live particles (cells of <see cref="VolumeSettings.CellSize"/> mean segments);
 /// 2. splat the free particles of every <see cref="VolumeSettings.SampleEvery"/>-th strand of a sheet (weight: the
 ///    strands each stands for) to their cell's eight nodes (trilinear): density ρ and momentum m;
 /// 3. at each node, the over-density P = max(0, ρ / ρ₀ − 1) (ρ₀ a multiple of the rest pose's median density), its
 ///    gradient by central differences, and the change a particle there takes: Δv = D − S·v, with D the push
 ///    −Stiffness·1 g·∇P·dt (at most half a cell per pass) plus S·m/ρ, and S = 1 − e^(−Friction·dt/T₀), T₀ = √(L / 1 g);
+///    and the largest curvature of P over the nodes with hair, which sets how long the next part may be;
 /// 4. D and S interpolated at the sample strands' particles, and every strand takes the changes of the two samples
 ///    around it, blended by its place in the sheet.
 /// The substeps that follow carry the changed velocities through the strand constraints. Skipped on teleport frames.
