@@ -28,6 +28,8 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     private const int MaxJobs = 1024;
     /// <summary>Grids of fewer nodes are reduced and turned into changes on the stepping thread, without a fork.</summary>
     private const int InlineNodes = 1 << 15;
+    /// <summary>Worlds of fewer particles find their sample strands' bounds on the stepping thread, without a fork.</summary>
+    private const int InlineBoundsParticles = 1 << 20;
 
     private readonly VolumeGrid _grid = new();
     private readonly VolumeRestCache _rest = new();
@@ -53,7 +55,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     // The frame being run (set before the passes fork).
     private HairWorld _w = null!;
     private FrameContext _ctx = null!;
-    private int _nodeJobs, _sheetJobs;
+    private int _nodeJobs, _sheetJobs, _boundsJobs;
     private float _invTarget, _push, _maxPush, _friction;
     private bool _inert;
 
@@ -82,9 +84,11 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
 
         _every = settings.SampleEvery;
         _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount);
-        dispatcher.Run(_sheetJobs, _boundsJob);
+        // The bounds of a head of hair's sample strands take less than a fork costs: on this thread unless the groom is huge.
+        _boundsJobs = w.ParticleCount < InlineBoundsParticles ? 1 : _sheetJobs;
+        if (_boundsJobs == 1) BoundsJob(0); else dispatcher.Run(_boundsJobs, _boundsJob);
         var min = _min[0]; var max = _max[0];
-        for (int j = 1; j < _sheetJobs; j++) { min = Vector3.Min(min, _min[j]); max = Vector3.Max(max, _max[j]); }
+        for (int j = 1; j < _boundsJobs; j++) { min = Vector3.Min(min, _min[j]); max = Vector3.Max(max, _max[j]); }
         if (!_grid.Fit(min, max, cell)) return;
 
         int n = _grid.NodeCount;
@@ -135,7 +139,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     private void BoundsJob(int job)
     {
         var w = _w;
-        var (sheetBegin, sheetEnd) = Sheets(job, _sheetJobs);
+        var (sheetBegin, sheetEnd) = Sheets(job, _boundsJobs);
         var inf = Vector256.Create(float.PositiveInfinity);
         Vector256<float> minX = inf, minY = inf, minZ = inf, maxX = -inf, maxY = -inf, maxZ = -inf;
         var min = new Vector3(float.PositiveInfinity); var max = new Vector3(float.NegativeInfinity);
