@@ -223,7 +223,11 @@ public static class StabilityCommand
         strands are still stretching when the run ends, which the energy test marks ✗).
         Known limitation, not counted as unstable: strands of 64 particles and more (edges of 4 mm and less) get edges
         compressed by 50–97 % where the head's radial push-out puts neighbouring particles on nearly the same surface
-        point (↓ in the particles × gravity grid); the strand stays finite, outside the head and calm.
+        point (↓ in the particles × gravity grid); the strand stays finite, outside the head and, up to 256 particles, calm.
+        At 512 particles (1 mm edges) and gravity × 100 the compressed strands never quite settle: after the head stops
+        they keep moving at a steady energy, on the reference path as on the fast one (seen in a longer run outside this
+        map), so whether the energy test passes there depends on the last bits of the arithmetic (it passed before the
+        bend sweep's fused roundings of the ninth performance pass, docs/performance.md).
 
         Cells show the worst edge elongation seen. ✓ stable, ~ only the stretch limit failed (finite and calm: the source's
         stretchy hair), ✗ unstable (non-finite, energy not dying down, or left inside the head; the reason is given).
