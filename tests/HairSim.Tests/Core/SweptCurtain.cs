@@ -1,4 +1,5 @@
 using System.Numerics;
+using Xunit;
 
 namespace HairSim.Tests.Core;
 
@@ -40,5 +41,27 @@ internal static class SweptCurtain
             if (moved < 5e-3f) untouched++;
         }
         return untouched;
+    }
+
+    /// <summary>
+    /// Steps 40 frames at 60 Hz with <paramref name="place"/> moving the bar to frame f's depth before each, and returns
+    /// the deepest a particle ended a frame inside it (<paramref name="inside"/>); checks that the bar has pushed every
+    /// strand by <see cref="Arrival"/>, that the pipeline was never rebuilt and that everything stays finite.
+    /// </summary>
+    public static float Sweep(HairScene scene, Action<int> place, Func<HairWorld, float> inside)
+    {
+        var sim = new HairSimulation(scene);
+        var pipeline = sim.Pipeline;
+        float deepest = 0f;
+        for (int f = 1; f <= 40; f++)
+        {
+            place(f);
+            sim.Step(1f / 60f);
+            deepest = MathF.Max(deepest, inside(scene.World));
+            if (f == Arrival) Assert.Equal(0, StrandsUntouched(scene.World));
+        }
+        Assert.Same(pipeline, sim.Pipeline);
+        Assert.Equal(0, scene.World.CountNonFinite());
+        return deepest;
     }
 }
