@@ -66,6 +66,10 @@ public partial class HairSystem3D : Node3D
     private MeshInstance3D? _scalpMesh;
     private HairMeshField? _scalpField;
     private HairScalpMask? _scalpMask;
+    // What the live hair grown on a Scalp Mesh was grown from, as a haircut's key (Logic/ScalpGrowth.StyleKey; null: the
+    // ellipsoid groom), and whether the Hairstyle resource may take this hair's style (not when it holds another's).
+    private string? _styleKey;
+    private bool _styleWritable = true;
     private MeshInstance3D? _scalpOverlay;
     private float _scalpMaskThreshold = 0.5f;
     private float _scalpRootLift = 0.002f;
@@ -102,7 +106,7 @@ public partial class HairSystem3D : Node3D
     private int[] _followerIndices = [];
 
     // ---- Groom ----
-    /// <summary>A saved groom (overrides the Groom numbers below when set).</summary>
+    /// <summary>A saved groom (overrides the Groom numbers below when set); for hair grown on a Scalp Mesh, its haircut.</summary>
     [ExportGroup("Groom")]
     [Export] public Hairstyle? Hairstyle
     {
@@ -128,7 +132,8 @@ public partial class HairSystem3D : Node3D
     /// Grow the hair on this mesh (a character's head) instead of the Head Radii ellipsoid, and collide with it through
     /// its distance field. Its surfaces are read in the head's frame each time the hair grows; where hair grows is
     /// painted in the vertex colours' red channel. Sheets, Strands Per Sheet, Particles Per Strand, Strand Length and
-    /// the Scalp values below shape the groom. Not with a Hairstyle resource (that stores an ellipsoid groom).
+    /// the Scalp values below shape the groom. A Hairstyle resource then keeps this hair's haircut (cuts and fits), not a
+    /// groom: it is applied again whenever the hair grows from the same scalp, painted scalp and groom values.
     /// </summary>
     [ExportGroup("Scalp")]
     [Export] public MeshInstance3D? ScalpMesh { get => _scalpMesh; set { _scalpMesh = value; Invalidate(); } }
@@ -331,10 +336,7 @@ public partial class HairSystem3D : Node3D
         ScalpInput? scalp = null;
         if (_scalpMesh != null)
         {
-            string? why = _hairstyle != null
-                ? "Scalp Mesh and Hairstyle are both set: a Hairstyle stores a groom grown on the Head Radii ellipsoid. Clear one of them."
-                : null;
-            if (why == null && !TryReadScalp(out scalp, out why)) scalp = null;
+            if (!TryReadScalp(out scalp, out string? why)) scalp = null;
             if (why != null)
             {
                 _problems = new[] { why };
@@ -346,6 +348,8 @@ public partial class HairSystem3D : Node3D
         var painted = scalp != null ? PaintedMask(scalp, warn: true) : null;
         // A painted mask is part of what grows: painting regrows, undoing a stroke brings the earlier hair back.
         string? scalpKey = scalp == null ? null : painted == null ? scalp.Key : scalp.Key + "|mask=" + Logic.ScalpMask.Key(painted);
+        _styleKey = scalp == null ? null : ScalpGrowth.StyleKey(_settings, scalp.Key, painted);
+        _styleWritable = StyleFits(warn: true);
         string key = GrowthKey.Of(_settings, _hairstyle?.ToRecord(), _hairstyle?.GetInstanceId() ?? 0, scalpKey);
         bool keepLive = _edits?.HasEntries == true;
         if (!fresh && key == _generations.CurrentKey && _generations.Live is { } live)
@@ -369,6 +373,9 @@ public partial class HairSystem3D : Node3D
                 groom = null;
                 scene = GrowOnScalp(scalp, painted);
                 scalpCollider = scene.GetComponent<HairSim.Meshes.MeshCollider>();
+                // A haircut styled on this same scalp, mask and groom: applied as the ellipsoid groom's style is.
+                if (_hairstyle != null && _styleWritable && _hairstyle.ToRecord() is { IsScalpStyle: true, HasStyle: true } style)
+                    HairStyleIO.Load(scene, style.StyleData);
             }
             else if (_hairstyle != null)
             {
@@ -497,7 +504,8 @@ public partial class HairSystem3D : Node3D
     {
         if (_hairstyle != null && !Engine.IsEditorHint())
             _hairstyle = (Hairstyle)_hairstyle.Duplicate();   // never clear a shared resource at run time
-        if (_hairstyle != null) _hairstyle.StyleData = Array.Empty<byte>();
+        // A Hairstyle holding another scalp's haircut is left as it is (the hair grew unstyled anyway).
+        if (_hairstyle != null && _styleWritable) _hairstyle.StyleData = Array.Empty<byte>();
         Rebuild(fresh: true);
         EmitSignal(SignalName.StyleChanged);
     }
@@ -507,9 +515,10 @@ public partial class HairSystem3D : Node3D
     {
         Settle();
         if (_scene == null) throw new InvalidOperationException("Nothing to save: the hair node has no scene.");
-        if (_groom == null) throw new InvalidOperationException("Hair grown on a Scalp Mesh cannot be saved as a Hairstyle yet: a Hairstyle stores a groom grown on the Head Radii ellipsoid.");
         var res = new Hairstyle();
-        res.SetFrom(HairstyleRecord.FromGroom(_groom, HairStyleIO.Save(_scene)));
+        // Hair grown on a Scalp Mesh: the style and what it was styled on (the node's groom numbers are kept for reading only).
+        res.SetFrom(_groom != null ? HairstyleRecord.FromGroom(_groom, HairStyleIO.Save(_scene))
+            : HairstyleRecord.FromGroom(_settings.ToGroom(), HairStyleIO.Save(_scene)) with { ScalpStyleKey = _styleKey ?? "" });
         string ext = System.IO.Path.GetExtension(path);
         string tmp = path[..^ext.Length] + ".tmp" + ext;
         var err = ResourceSaver.Save(res, tmp);
@@ -522,14 +531,23 @@ public partial class HairSystem3D : Node3D
     public void LoadHairstyle(string path)
     {
         Settle();
-        if (_scalpMesh != null) throw new InvalidOperationException("Clear Scalp Mesh first: a Hairstyle grows its hair on the Head Radii ellipsoid.");
         if (!ResourceLoader.Exists(path)) throw new System.IO.FileNotFoundException($"No hairstyle at {path}.");
         // Untyped load and `as`: Load<T> casts, so a resource of another type would throw InvalidCastException
         // instead of this message.
         var res = ResourceLoader.Load(path, "", ResourceLoader.CacheMode.Ignore) as Hairstyle
                   ?? throw new System.IO.InvalidDataException($"{path} is not a Hairstyle resource.");
+        var record = res.ToRecord();
+        if (_scalpMesh != null)
+        {
+            // A haircut of scalp-grown hair applies to hair grown from the same scalp, mask and groom values only.
+            if (!record.IsScalpStyle) throw new InvalidOperationException("This Hairstyle holds a groom grown on the Head Radii ellipsoid: clear Scalp Mesh to use it.");
+            if (_scene == null || record.ScalpStyleKey != _styleKey)
+                throw new InvalidOperationException("This Hairstyle was styled on another Scalp Mesh, painted scalp or groom (Sheets, Strands Per Sheet, Particles Per Strand, Strand Length, Seed, Scalp values): set those as they were.");
+            // Checked on the live hair, which grew from the same inputs: a corrupt style throws and changes nothing.
+            if (record.HasStyle) HairStyleIO.Load(_scene, record.StyleData);
+        }
         // Build first: if the file is bad, nothing here has changed yet.
-        res.BuildScene(_settings.ToSimulation());
+        else res.BuildScene(_settings.ToSimulation());
         Hairstyle = res; // through the setter, so the node follows the resource's edits
         Rebuild();
         EmitSignal(SignalName.StyleChanged);
@@ -539,7 +557,12 @@ public partial class HairSystem3D : Node3D
     {
         if (_scene == null) return;
         // In the editor the resource is what the scene file saves: keep it in step with every edit, undo and redo.
-        if (Engine.IsEditorHint() && _hairstyle != null) _hairstyle.StyleData = HairStyleIO.Save(_scene);
+        if (Engine.IsEditorHint() && _hairstyle != null && _styleWritable)
+        {
+            _hairstyle.StyleData = HairStyleIO.Save(_scene);
+            // A Hairstyle that held nothing takes this scalp's haircut from now on (and says what it was styled on).
+            if (_styleKey != null) _hairstyle.ScalpStyleKey = _styleKey;
+        }
         Draw();
         EmitSignal(SignalName.StyleChanged);
     }
@@ -639,6 +662,23 @@ public partial class HairSystem3D : Node3D
         if (_scalpMask.ScalpKey == scalp.Key) return _scalpMask.Triangles;
         if (warn) GD.PushWarning($"{Name}: Scalp Mask was painted on another mesh or with the mesh elsewhere on the head: the vertex colours decide where hair grows (paint again, or clear Scalp Mask).");
         return null;
+    }
+
+    /// <summary>
+    /// Whether the Hairstyle may hold the live hair's style: always for the ellipsoid groom; for hair grown on a Scalp
+    /// Mesh, when it is empty or was styled on the same scalp, mask and groom (<see cref="_styleKey"/>). Otherwise its
+    /// style is left as it is, and the hair grows unstyled.
+    /// </summary>
+    private bool StyleFits(bool warn)
+    {
+        if (_hairstyle == null || _styleKey == null) return true;
+        var record = _hairstyle.ToRecord();
+        if (record.IsScalpStyle ? record.ScalpStyleKey == _styleKey : !record.HasStyle) return true;
+        if (warn)
+            GD.PushWarning(record.IsScalpStyle
+                ? $"{Name}: the Hairstyle was styled on another Scalp Mesh, painted scalp or groom: the hair grows unstyled and the Hairstyle is left as it is (set those as they were, or assign a new Hairstyle to keep this hair's haircut)."
+                : $"{Name}: the Hairstyle holds a haircut of the Head Radii ellipsoid groom: it is not applied to hair grown on the Scalp Mesh and is left as it is (assign a new Hairstyle to keep this hair's haircut).");
+        return false;
     }
 
     /// <summary>A scalp paint stroke, computed but not applied: the mask before (null: none, the vertex colours) and after.</summary>

@@ -37,9 +37,15 @@ public partial class Hairstyle : Resource
     [Export] public long Seed { get => _seed; set { _seed = value; EmitChanged(); } }
     /// <summary>The styled state; empty = the groom as grown.</summary>
     [Export] public byte[] StyleData { get; set; } = [];
+    /// <summary>
+    /// For a haircut of hair grown on a Scalp Mesh: the scalp, mask and groom values it was styled on (Logic/ScalpGrowth.StyleKey),
+    /// written by the hair node; the groom numbers above are then not used. Empty: a groom grown on the Head Radii ellipsoid.
+    /// </summary>
+    [Export] public string ScalpStyleKey { get; set; } = "";
 
     public HairstyleRecord ToRecord() => new(Sheets, StrandsPerSheet, ParticlesPerStrand, StrandLength,
-        HeadRadii.ToNumerics(), HeadCenter.ToNumerics(), RootJitter, PinnedPerStrand, unchecked((ulong)Seed), StyleData ?? []);
+        HeadRadii.ToNumerics(), HeadCenter.ToNumerics(), RootJitter, PinnedPerStrand, unchecked((ulong)Seed), StyleData ?? [])
+        { ScalpStyleKey = ScalpStyleKey ?? "" };
 
     public void SetFrom(HairstyleRecord r)
     {
@@ -47,6 +53,7 @@ public partial class Hairstyle : Resource
         StrandLength = r.StrandLength; HeadRadii = r.HeadRadii.ToGodot(); HeadCenter = r.HeadCenter.ToGodot();
         RootJitter = r.RootJitter; PinnedPerStrand = r.PinnedPerStrand; Seed = unchecked((long)r.Seed);
         StyleData = r.StyleData;
+        ScalpStyleKey = r.ScalpStyleKey;
         EmitChanged();
     }
 
@@ -54,6 +61,8 @@ public partial class Hairstyle : Resource
     public HairScene BuildScene(SimulationSettings settings)
     {
         var record = ToRecord();
+        if (record.IsScalpStyle)
+            throw new System.IO.InvalidDataException("This Hairstyle holds a haircut of hair grown on a Scalp Mesh: set the hair node's Scalp Mesh to the mesh it was styled on.");
         var scene = GroomBuilder.BuildScene(record.ToGroom(), settings);
         if (record.HasStyle) HairStyleIO.Load(scene, record.StyleData);
         return scene;

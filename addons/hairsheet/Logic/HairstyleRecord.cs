@@ -12,6 +12,14 @@ public sealed record HairstyleRecord(
     int Sheets, int StrandsPerSheet, int ParticlesPerStrand, float StrandLength,
     Vector3 HeadRadii, Vector3 HeadCenter, float RootJitter, int PinnedPerStrand, ulong Seed, byte[] StyleData)
 {
+    /// <summary>
+    /// For a haircut styled on hair grown on a Scalp Mesh: what it was styled on (<see cref="ScalpGrowth.StyleKey"/>);
+    /// the groom numbers above are then not used. Empty: a groom grown on the Head Radii ellipsoid.
+    /// </summary>
+    public string ScalpStyleKey { get; init; } = "";
+
+    public bool IsScalpStyle => ScalpStyleKey.Length > 0;
+
     public static HairstyleRecord FromGroom(GroomSettings g, byte[]? styleData = null)
     {
         ArgumentNullException.ThrowIfNull(g);

@@ -47,6 +47,20 @@ public static class ScalpGrowth
     public static string FieldKey(string scalpKey, float cellSize) =>
         scalpKey + "/cell=" + cellSize.ToString("R", CultureInfo.InvariantCulture);
 
+    /// <summary>
+    /// What a haircut styled on scalp-grown hair was styled on: the scalp's key, the painted mask's key (or none: the
+    /// vertex colours) and every value that decides which strands grow where (groom counts, length, seed, the Scalp
+    /// values), and nothing else, so changing damping or substeps keeps a Hairstyle's style, while a style cut on other
+    /// strands is never applied to these.
+    /// </summary>
+    public static string StyleKey(HairNodeSettings settings, string scalpKey, byte[]? paintedMask)
+    {
+        ArgumentNullException.ThrowIfNull(settings);
+        ArgumentNullException.ThrowIfNull(scalpKey);
+        var c = CultureInfo.InvariantCulture;
+        return string.Create(c, $"{scalpKey}|mask={(paintedMask == null ? "colours" : ScalpMask.Key(paintedMask))}|{settings.Sheets}x{settings.StrandsPerSheet}x{settings.ParticlesPerStrand}|length={settings.StrandLength:R}|seed={settings.Seed}|threshold={settings.ScalpMaskThreshold:R}|lift={settings.ScalpRootLift:R}|drape={settings.ScalpDrape:R}|cell={settings.ScalpCellSize:R}");
+    }
+
     /// <summary>The scalp in head space (Godot's clockwise winding reversed; colours kept for the mask).</summary>
     public static TriangleMesh HeadSpaceMesh(IReadOnlyList<MeshSurfaces.Surface> surfaces, in Matrix4x4 meshToHead) =>
         MeshSurfaces.ToHeadSpace(surfaces, meshToHead);
