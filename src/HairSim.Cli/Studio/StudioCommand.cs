@@ -14,16 +14,27 @@ public static class StudioCommand
         var groom = CliOptions.Choice("--groom", "the hair the studio starts with", StudioGrooms.Default, [.. StudioGrooms.All.Select(g => g.Name)]);
         var density = CliOptions.Int("--density", "strands per sheet, overriding the groom's (0 keeps the groom's)", 0, 0, 64);
         var seconds = CliOptions.Double("--seconds", "stop after this many seconds (0 = run until Ctrl+C)", 0, v => v >= 0, "0 or more seconds", "seconds");
-        var command = new Command("studio", Description) { host, port, groom, density, seconds };
-        command.SetAction(p => Execute(p.GetValue(host)!, p.GetValue(port), p.GetValue(groom)!, p.GetValue(density), p.GetValue(seconds)));
+        var head = CliOptions.Text("--head", "your own head for the \"mesh head\" groom (.glb, .gltf or .obj; its vertex colours' red marks the scalp, all of it without colours), to paint its scalp and style hair on it; default: the project's head", null, "file");
+        var command = new Command("studio", Description) { host, port, groom, density, seconds, head };
+        command.SetAction(p => Execute(p.GetValue(host)!, p.GetValue(port), p.GetValue(groom)!, p.GetValue(density), p.GetValue(seconds), p.GetValue(head)));
         return command;
     }
 
-    public static int Execute(string host, int port, string groom, int density, double seconds)
+    public static int Execute(string host, int port, string groom, int density, double seconds, string? headFile = null)
     {
         StudioGrooms.Create(groom, density > 0 ? density : null);   // refuse a bad groom before starting anything
+        // A missing or unreadable file is reported (exit 5) before anything starts.
+        var head = headFile == null ? null : HairSim.Meshes.MeshFile.Load(headFile);
+        if (head != null) Console.WriteLine($"head mesh {headFile}: {head.TriangleCount:N0} triangles (the \"mesh head\" groom grows on it)");
 
-        using var session = new StudioSession(groom, density > 0 ? density : null);
+        StudioSession session;
+        try { session = new StudioSession(groom, density > 0 ? density : null, head: head); }
+        catch (ArgumentException e) when (head != null && e is not ArgumentOutOfRangeException)
+        {
+            // The head's scalp cannot hold the groom (too few roots fit, no triangle on the scalp).
+            throw new UsageException($"--head {headFile}: {e.Message}");
+        }
+        using var _ = session;
         var (app, url) = StudioServer.StartAsync(session, host, port).GetAwaiter().GetResult();
         session.Start();
         if (host is not ("127.0.0.1" or "localhost" or "::1"))

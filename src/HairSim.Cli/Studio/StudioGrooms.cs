@@ -20,12 +20,15 @@ public static class StudioGrooms
     /// <summary>The groom grown on <see cref="HairSim.Meshes.ProceduralHead"/> instead of the ellipsoid.</summary>
     public const string MeshHead = "mesh head";
 
-    /// <summary>The named groom's scene: on the ellipsoid head, or for <see cref="MeshHead"/> on the project's mesh head.</summary>
-    public static HairScene BuildScene(string name, int? strandsPerSheet = null)
+    /// <summary>
+    /// The named groom's scene: on the ellipsoid head, or for <see cref="MeshHead"/> on <paramref name="head"/> (a user's
+    /// head from `studio --head file`), else the project's mesh head.
+    /// </summary>
+    public static HairScene BuildScene(string name, int? strandsPerSheet = null, HairSim.Meshes.TriangleMesh? head = null)
     {
         var g = Create(name, strandsPerSheet);
         if (!IsMesh(name)) return GroomBuilder.BuildScene(g);
-        var mesh = HairSim.Meshes.ProceduralHead.Create();
+        var mesh = head ?? HairSim.Meshes.ProceduralHead.Create();
         var field = HairSim.Meshes.SignedDistanceField.Bake(mesh, 0.0025f);
         return HairSim.Meshes.MeshScalp.BuildScene(mesh, field, MeshSettings(g));
     }

@@ -58,11 +58,15 @@ public sealed class StudioSession : IDisposable
     private Thread? _loop;
     private volatile bool _stop;
 
-    public StudioSession(string groom = StudioGrooms.Default, int? strandsPerSheet = null, IDisposableDispatcher? threads = null)
+    /// <param name="head">The mesh the <see cref="StudioGrooms.MeshHead"/> groom grows on (`studio --head file`); null: the project's head.</param>
+    public StudioSession(string groom = StudioGrooms.Default, int? strandsPerSheet = null, IDisposableDispatcher? threads = null, TriangleMesh? head = null)
     {
         _threads = threads ?? ThreadDispatchers.CreateDefault();
+        _head = head;
         LoadGroom(groom, strandsPerSheet);
     }
+
+    private readonly TriangleMesh? _head;
 
     /// <summary>Steps the hair at 60 Hz on a background thread until disposed (frames are dropped, not queued, when late).</summary>
     public void Start()
@@ -603,7 +607,7 @@ public sealed class StudioSession : IDisposable
 
     private void LoadGroom(string name, int? strandsPerSheet)
     {
-        var scene = StudioGrooms.BuildScene(name, strandsPerSheet);
+        var scene = StudioGrooms.BuildScene(name, strandsPerSheet, _head);
         Install(scene, scene.World.Clone(), name.ToLowerInvariant());
         if (scene.GetComponent<MeshCollider>()?.Mesh is { } mesh && StudioGrooms.IsMesh(name))
         {

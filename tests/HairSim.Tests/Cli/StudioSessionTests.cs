@@ -321,6 +321,49 @@ public sealed class StudioSessionTests : IDisposable
         Assert.Equal(saved, _session.Save());
     }
 
+    [Fact]
+    public void A_head_of_the_users_own_carries_the_mesh_head_groom_and_its_scalp_can_be_painted()
+    {
+        // `studio --head file`: an egg-shaped head without colours (all of it scalp), read as a file would be.
+        var own = HairSim.Meshes.TriangleMesh.Ellipsoid(new Vector3(0f, 0.02f, 0f), new Vector3(0.07f, 0.09f, 0.08f), 16, 32);
+        string file = Path.Combine(Path.GetTempPath(), $"studio-head-{Guid.NewGuid():N}.obj");
+        using (var w = new StreamWriter(file)) HairSim.Meshes.ObjReader.Write(w, own);
+        try
+        {
+            var head = HairSim.Meshes.MeshFile.Load(file);
+            using var session = new StudioSession(StudioGrooms.MeshHead, 4, ThreadDispatchers.CreateDefault(), head);
+            var mesh = session.Mesh()!;
+            Assert.Equal(own.TriangleCount, BitConverter.ToInt32(mesh, 8));
+            Assert.True(session.State().HasMesh);
+            // The scalp starts as the whole mesh (no colours) and is the one the page paints.
+            var scalp = session.ScalpMask()!;
+            Assert.Equal(own.TriangleCount, BitConverter.ToInt32(scalp, 8));
+            Assert.All(scalp[12..], b => Assert.Equal(1, b));
+            // The hair grew on this head: every root lies just outside the egg, far from the project's head's features.
+            var roots = HairRoots(session);
+            Assert.NotEmpty(roots);
+            foreach (var r in roots)
+            {
+                var u = (r - new Vector3(0f, 0.02f, 0f)) / new Vector3(0.07f, 0.09f, 0.08f);
+                Assert.InRange(u.Length(), 0.98f, 1.08f);
+            }
+        }
+        finally { File.Delete(file); }
+    }
+
+    /// <summary>Each strand's root as the page receives the hair (decoded from a frame, by the topology's strand starts).</summary>
+    private static List<Vector3> HairRoots(StudioSession session)
+    {
+        session.StepFrame();
+        session.SetPaused(true);   // roots are pinned: where they grew
+        var frame = session.Frame();
+        var topology = session.Topology();
+        var roots = new List<Vector3>();
+        for (int s = 0; s < session.State().Strands; s++)
+            roots.Add(FrameEncoder.DecodePosition(frame, BitConverter.ToInt32(topology, FrameEncoder.TopologyHeaderBytes + 16 * s)));
+        return roots;
+    }
+
     /// <summary>The head mesh's triangle centres and the painted mask, decoded from what the page receives.</summary>
     private (Vector3[] Centres, byte[] Mask) MeshAndScalp()
     {
