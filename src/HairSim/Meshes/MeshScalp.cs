@@ -229,6 +229,15 @@ public static class MeshScalp
                 dir = Vector3.Normalize(next - pts[k - 1]);
                 next = pts[k - 1] + dir * segment;
             }
+            // Keeping the segment's length can leave the particle inside a thin part it was turned against (an ear):
+            // then it goes out along the field's gradient instead (that segment grows a little longer than the others,
+            // and keeps that rest length), rather than leaving a particle the collision must dig out of the ear.
+            for (int it = 0; it < 8; it++)
+            {
+                float d = field.Sample(next, out var grad);
+                if (d >= 0.5f * g.RootLift || grad.LengthSquared() < 1e-12f) break;
+                next += Vector3.Normalize(grad) * (g.RootLift - d);
+            }
             pts[k] = next;
         }
     }

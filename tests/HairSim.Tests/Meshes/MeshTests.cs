@@ -244,4 +244,30 @@ public sealed class MeshTests
         for (int i = 0; i < world.ParticleCount; i++) Assert.True(sdf.Distance(world.GetPosition(i)) > -1e-4f, "a particle grew inside the head");
         Assert.InRange(world.TotalRestLength(), 400 * 0.2 * 0.999, 400 * 0.2 * 1.001);
     }
+
+    [Fact]
+    public void A_reference_size_groom_grows_on_the_projects_head_with_almost_no_particle_inside_its_ears()
+    {
+        // Strands that turn down past the 8 mm ears used to leave particles inside them (the collision then dug them out
+        // in the first frames): the comb now pushes such a particle out along the field when keeping the segment's
+        // length cannot.
+        var head = ProceduralHead.Create();
+        var sdf = SignedDistanceField.Bake(head, 0.0025f);
+        var reference = GroomSettings.Reference();
+        var world = MeshScalp.Grow(head, sdf, new MeshGroomSettings
+        {
+            SheetCount = reference.SheetCount, StrandsPerSheet = reference.StrandsPerSheet, ParticlesPerStrand = reference.ParticlesPerStrand,
+            StrandLength = reference.StrandLength, ScalpMaskThreshold = 0.5f,
+        });
+        int inside = 0;
+        float deepest = 0f;
+        for (int i = 0; i < world.ParticleCount; i++)
+        {
+            float d = sdf.Distance(world.GetPosition(i));
+            if (d < 0f) inside++;
+            deepest = MathF.Min(deepest, d);
+        }
+        Assert.True(inside <= world.ParticleCount / 50_000, $"{inside} of {world.ParticleCount} grown particles inside the head");
+        Assert.True(deepest > -0.0015f, $"a grown particle is {-deepest * 1000:F2} mm inside the head");
+    }
 }
