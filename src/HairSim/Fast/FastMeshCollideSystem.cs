@@ -14,7 +14,9 @@ namespace HairSim.Fast;
 /// field (<see cref="SignedDistanceField.Bricks"/>, one gather from a small table) settles them without the
 /// eight-value sample. The bound only skips samples whose result could not change a decision: a particle whose
 /// brick lies farther than the margin plus half the chunk's longest segment (plus the trilinear slack) is neither
-/// pushed nor starts a midpoint test, and a midpoint whose brick lies beyond the margin is not pushed. Strands outside
+/// pushed nor starts a midpoint test, and a midpoint whose brick lies beyond the margin is not pushed. After a chunk's
+/// first substep, a row whose lanes have all stayed within their clearance of where the row was last measured (the
+/// distance beyond that far threshold, over √3) is settled without a sample at all. Strands outside
 /// chunks (and machines without AVX-512) go through the reference system.
 /// </summary>
 public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
@@ -75,7 +77,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             fixed (float* data = field.Data, bricks = field.Bricks)
             {
                 float* memo = CornerMemo.For(m, field);
-                var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats);
+                var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats, memo + 2 * MemoFloats,
+                    reuse: substep > 0);
                 for (int g = 0; g < L; g += 8)
                     k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
             }
@@ -87,6 +90,16 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private const int CornerFloats = 72;
     /// <summary>Floats of the particle (or the midpoint) memos of the tallest chunk: one per 8 lanes of each row.</summary>
     private const int MemoFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8 * CornerFloats;
+    /// <summary>Floats of one 8-lane row's clearance record: head-space x, y, z where the row was last measured and the squared distance it may move.</summary>
+    private const int ClearFloats = 32;
+    /// <summary>Floats of one mesh's memos per thread: particle and midpoint corners, then the rows' clearances.</summary>
+    private const int SlotFloats = 2 * MemoFloats + StrandChunk.MaxRows * StrandChunk.Lanes / 8 * ClearFloats;
+    /// <summary>
+    /// 1/√3 less a margin: the trilinear field changes by at most √3 × a move (each axis's slope is a blend of grid
+    /// differences of at most one cell per cell), and the brick bounds and exact samples it is compared against carry
+    /// float roundings of about 1e-5 of the largest value.
+    /// </summary>
+    private const float ClearanceShare = 0.5770f;
 
 
     /// <summary>
@@ -105,13 +118,13 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             var memo = t_memo ??= new CornerMemo();
             if (memo._fields.Length <= mesh)
             {
-                var floats = GC.AllocateUninitializedArray<float>((mesh + 1) * 2 * MemoFloats + 16, pinned: true);
+                var floats = GC.AllocateUninitializedArray<float>((mesh + 1) * SlotFloats + 16, pinned: true);
                 memo._floats = floats;
                 memo._fields = new SignedDistanceField?[mesh + 1];
             }
             // 32-byte aligned (aligned loads and stores).
             float* base0 = (float*)(((nint)Unsafe.AsPointer(ref MemoryMarshal.GetArrayDataReference(memo._floats)) + 31) & ~(nint)31);
-            float* slot = base0 + mesh * 2 * MemoFloats;
+            float* slot = base0 + mesh * SlotFloats;
             if (!ReferenceEquals(memo._fields[mesh], field))
             {
                 // No cell has index −1: every lookup misses until a gather fills the row.
@@ -132,17 +145,19 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
 
     private unsafe readonly struct Kernel
     {
-        private readonly float* _d, _bricks, _particleCorners, _midpointCorners;
+        private readonly float* _d, _bricks, _particleCorners, _midpointCorners, _clearance;
+        private readonly bool _reuse;
         private readonly int _sy, _sz;
         private readonly Vector256<float> _ox, _oy, _oz, _inv, _cell, _hx, _hy, _hz, _band, _margin, _threshold, _far, _slide, _tx, _ty, _tz;
         private readonly Vector256<float> _l00, _l01, _l02, _l10, _l11, _l12, _l20, _l21, _l22;
         private readonly Vector256<float> _w00, _w01, _w02, _w10, _w11, _w12, _w20, _w21, _w22;
         private readonly Vector256<int> _nx, _nxy, _bx, _bxy;
 
-        public Kernel(MeshCollider mc, float* d, float* bricks, float maxRest, float slide, in MeshCollideSystem.Pose pose, float* particleCorners, float* midpointCorners)
+        public Kernel(MeshCollider mc, float* d, float* bricks, float maxRest, float slide, in MeshCollideSystem.Pose pose, float* particleCorners, float* midpointCorners,
+            float* clearance, bool reuse)
         {
             var f = mc.Field;
-            _d = d; _bricks = bricks; _particleCorners = particleCorners; _midpointCorners = midpointCorners;
+            _d = d; _bricks = bricks; _particleCorners = particleCorners; _midpointCorners = midpointCorners; _clearance = clearance; _reuse = reuse;
             _sy = f.Nx; _sz = f.Nx * f.Ny;
             _ox = Vector256.Create(f.Origin.X); _oy = Vector256.Create(f.Origin.Y); _oz = Vector256.Create(f.Origin.Z);
             _inv = Vector256.Create(f.InvCell); _cell = Vector256.Create(f.CellSize);
@@ -182,7 +197,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 nuint o = (nuint)(k * StrandChunk.Lanes + g);
                 bool pinnedNext = k + 1 < height && AllPinned(in r, o + StrandChunk.Lanes);
                 if (pinned && pinnedNext) { pinnedBefore = true; pinned = true; continue; }
-                var d = PushOut(all, r, o);
+                var d = PushOut(all, r, o, track: true);
                 if (k > 0 && !(pinned && pinnedBefore))
                 {
                     var alive = Vector256.GreaterThan(live, Vector256.Create(k)).AsSingle();
@@ -220,12 +235,28 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         /// The particles of row o in <paramref name="mask"/> pushed out to the margin (MeshCollideSystem.PushOut);
         /// returns each lane's distance, exact wherever it could change a decision (see the class summary).
         /// </summary>
-        private Vector256<float> PushOut(Vector256<float> mask, in Rows r, nuint o)
+        private Vector256<float> PushOut(Vector256<float> mask, in Rows r, nuint o, bool track = false)
         {
             var x = Vector256.LoadUnsafe(ref r.X, o); var y = Vector256.LoadUnsafe(ref r.Y, o); var z = Vector256.LoadUnsafe(ref r.Z, o);
             ToLocal(x - _tx, y - _ty, z - _tz, out var lx, out var ly, out var lz);
+            float* clear = _clearance + o * ClearFloats / 8;
+            if (track && _reuse)
+            {
+                // Every lane still within its clearance of where the row was last measured this frame: the field there
+                // is at least the far distance (it moves by at most √3 × the move), which settles the row as an exact
+                // sample would (not pushed, no midpoint test from it).
+                var mx = lx - Vector256.Load(clear); var my = ly - Vector256.Load(clear + 8); var mz = lz - Vector256.Load(clear + 16);
+                if (Vector256.LessThanAll(mx * mx + my * my + mz * mz, Vector256.Load(clear + 24))) return _far;
+            }
             float* corners = _particleCorners + o * CornerFloats / 8;
             var d = Distance(lx, ly, lz, corners);
+            if (track)
+            {
+                // The clearance: how far each lane may move before the field there could fall below the far distance
+                // (zero for a lane nearer than that, so it is measured every substep).
+                var c = Avx.Max(d - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
+                lx.Store(clear); ly.Store(clear + 8); lz.Store(clear + 16); (c * c).Store(clear + 24);
+            }
             var push = mask & Vector256.LessThan(d, _margin) & ~Vector256.Equals(Vector256.LoadUnsafe(ref r.M, o), Vector256<float>.Zero);
             if (push == Vector256<float>.Zero) return d;
             var running = push;
