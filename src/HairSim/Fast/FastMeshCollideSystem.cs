@@ -16,7 +16,8 @@ namespace HairSim.Fast;
 /// brick lies farther than the margin plus half the chunk's longest segment (plus the trilinear slack) is neither
 /// pushed nor starts a midpoint test, and a midpoint whose brick lies beyond the margin is not pushed. After a chunk's
 /// first substep, a row whose lanes have all stayed within their clearance of where the row was last measured (the
-/// distance beyond that far threshold, over √3) is settled without a sample at all. Strands outside
+/// distance beyond that far threshold, over √3) is settled without a sample at all, and so is a row's midpoint test
+/// when every tested midpoint stayed within its clearance (its distance beyond the margin, over √3). Strands outside
 /// chunks (and machines without AVX-512) go through the reference system.
 /// </summary>
 public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
@@ -78,7 +79,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             {
                 float* memo = CornerMemo.For(m, field);
                 var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats, memo + 2 * MemoFloats,
-                    reuse: substep > 0);
+                    memo + 2 * MemoFloats + ClearanceFloats, reuse: substep > 0);
                 for (int g = 0; g < L; g += 8)
                     k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
             }
@@ -93,7 +94,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     /// <summary>Floats of one 8-lane row's clearance record: head-space x, y, z where the row was last measured and the squared distance it may move.</summary>
     private const int ClearFloats = 32;
     /// <summary>Floats of one mesh's memos per thread: particle and midpoint corners, then the rows' clearances.</summary>
-    private const int SlotFloats = 2 * MemoFloats + StrandChunk.MaxRows * StrandChunk.Lanes / 8 * ClearFloats;
+    private const int ClearanceFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8 * ClearFloats;
+    private const int SlotFloats = 2 * MemoFloats + 2 * ClearanceFloats;
     /// <summary>
     /// 1/√3 less a margin: the trilinear field changes by at most √3 × a move (each axis's slope is a blend of grid
     /// differences of at most one cell per cell), and the brick bounds and exact samples it is compared against carry
@@ -129,6 +131,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             {
                 // No cell has index −1: every lookup misses until a gather fills the row.
                 for (int r = 0; r < 2 * MemoFloats; r += CornerFloats) Vector256.Create(-1).AsSingle().Store(slot + r);
+                // Clearances are lower bounds of this field: none carried over from another (−1: never within).
+                for (int r = 2 * MemoFloats; r < SlotFloats; r += ClearFloats) Vector256.Create(-1f).Store(slot + r + 24);
                 memo._fields[mesh] = field;
             }
             return slot;
@@ -145,7 +149,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
 
     private unsafe readonly struct Kernel
     {
-        private readonly float* _d, _bricks, _particleCorners, _midpointCorners, _clearance;
+        private readonly float* _d, _bricks, _particleCorners, _midpointCorners, _clearance, _midpointClearance;
         private readonly bool _reuse;
         private readonly int _sy, _sz;
         private readonly Vector256<float> _ox, _oy, _oz, _inv, _cell, _hx, _hy, _hz, _band, _margin, _threshold, _far, _slide, _tx, _ty, _tz;
@@ -154,10 +158,11 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         private readonly Vector256<int> _nx, _nxy, _bx, _bxy;
 
         public Kernel(MeshCollider mc, float* d, float* bricks, float maxRest, float slide, in MeshCollideSystem.Pose pose, float* particleCorners, float* midpointCorners,
-            float* clearance, bool reuse)
+            float* clearance, float* midpointClearance, bool reuse)
         {
             var f = mc.Field;
             _d = d; _bricks = bricks; _particleCorners = particleCorners; _midpointCorners = midpointCorners; _clearance = clearance; _reuse = reuse;
+            _midpointClearance = midpointClearance;
             _sy = f.Nx; _sz = f.Nx * f.Ny;
             _ox = Vector256.Create(f.Origin.X); _oy = Vector256.Create(f.Origin.Y); _oz = Vector256.Create(f.Origin.Z);
             _inv = Vector256.Create(f.InvCell); _cell = Vector256.Create(f.CellSize);
@@ -292,12 +297,27 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             var x0 = Vector256.LoadUnsafe(ref r.X, o0); var y0 = Vector256.LoadUnsafe(ref r.Y, o0); var z0 = Vector256.LoadUnsafe(ref r.Z, o0);
             var x1 = Vector256.LoadUnsafe(ref r.X, o1); var y1 = Vector256.LoadUnsafe(ref r.Y, o1); var z1 = Vector256.LoadUnsafe(ref r.Z, o1);
             ToLocal(half * (x0 + x1) - _tx, half * (y0 + y1) - _ty, half * (z0 + z1) - _tz, out var lx, out var ly, out var lz);
+            // Every tested midpoint still within its clearance of where it was last measured: none can be inside the margin.
+            float* clear = _midpointClearance + o1 * ClearFloats / 8;
+            if (_reuse)
+            {
+                var mx = lx - Vector256.Load(clear); var my = ly - Vector256.Load(clear + 8); var mz = lz - Vector256.Load(clear + 16);
+                var within = Vector256.LessThan(mx * mx + my * my + mz * mz, Vector256.Load(clear + 24));
+                if (Vector256.EqualsAll((within | ~test).AsInt32(), Vector256<int>.AllBitsSet)) return d;
+            }
             // Only midpoints whose brick reaches below the margin can be pushed.
-            var near = test & Grid(lx, ly, lz, out var ix, out var iy, out var iz, out var fx, out var fy, out var fz);
+            var inside = Grid(lx, ly, lz, out var ix, out var iy, out var iz, out var fx, out var fy, out var fz);
+            var near = test & inside;
             if (near == Vector256<float>.Zero) return d;
-            near &= Vector256.LessThan(Brick(ix, iy, iz), _margin);
-            if (near == Vector256<float>.Zero) return d;
+            var brick = Brick(ix, iy, iz);
+            near &= Vector256.LessThan(brick, _margin);
+            if (near == Vector256<float>.Zero)
+            {
+                Clearance(clear, lx, ly, lz, inside & brick);
+                return d;
+            }
             var dm = Sample(ix, iy, iz, fx, fy, fz, _midpointCorners + o1 * CornerFloats / 8, out var gx, out var gy, out var gz);
+            Clearance(clear, lx, ly, lz, inside & Vector256.ConditionalSelect(near, dm, brick));
             var g2 = gx * gx + gy * gy + gz * gz;
             var hit = near & Vector256.LessThan(dm, _margin) & Vector256.GreaterThan(g2, Vector256.Create(1e-12f));
             if (hit == Vector256<float>.Zero) return d;
@@ -317,6 +337,17 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             // Lifting a segment over a thin part (an ear) can push an end into it from the other side.
             PushOut(hit, r, o0);
             return Vector256.ConditionalSelect(hit, PushOut(hit, r, o1), d);
+        }
+
+        /// <summary>
+        /// Remembers midpoints measured at least <paramref name="value"/> from the surface (a lower bound; zero for lanes
+        /// not measured): each may move (value − margin)/√3 before it could be inside the margin.
+        /// </summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private void Clearance(float* clear, Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> value)
+        {
+            var c = Avx.Max(value - _margin, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
+            lx.Store(clear); ly.Store(clear + 8); lz.Store(clear + 16); (c * c).Store(clear + 24);
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
