@@ -47,6 +47,23 @@ public class FastAllocationTests
     }
 
     [Theory]
+    [InlineData("straight")]
+    [InlineData("cut")]
+    [InlineData("rest")]
+    [InlineData("rest-cut")]
+    [InlineData("all-colliders")]
+    public void TheReferencePathAllocatesNothingPerStepEither(string scene)
+    {
+        // The reference path is the oracle, not what a game runs; still, a frame of it allocates nothing once it runs
+        // (the bench counts every thread's allocations, the runtime's one-time ones included, over a short warm-up).
+        var s = FastPathScenes.Build(scene, SolverPath.Reference);
+        var sim = new HairSimulation(s);
+        for (int f = 1; f <= 10; f++) sim.Step(1f / 60f, FastPathScenes.HeadAt(f));
+        Action<int> step = f => sim.Step(1f / 60f, FastPathScenes.HeadAt(f));
+        Assert.Equal(0, Allocation.InQuieterWindow(step, 11, 5));
+    }
+
+    [Theory]
     [InlineData("straight", false)]
     [InlineData("cut", false)]
     [InlineData("bent", false)]
