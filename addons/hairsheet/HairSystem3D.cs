@@ -517,8 +517,7 @@ public partial class HairSystem3D : Node3D
         if (_scene == null) throw new InvalidOperationException("Nothing to save: the hair node has no scene.");
         var res = new Hairstyle();
         // Hair grown on a Scalp Mesh: the style and what it was styled on (the node's groom numbers are kept for reading only).
-        res.SetFrom(_groom != null ? HairstyleRecord.FromGroom(_groom, HairStyleIO.Save(_scene))
-            : HairstyleRecord.FromGroom(_settings.ToGroom(), HairStyleIO.Save(_scene)) with { ScalpStyleKey = _styleKey ?? "" });
+        res.SetFrom(HairstyleRecord.FromGroom(_groom ?? _settings.ToGroom(), HairStyleIO.Save(_scene)) with { ScalpStyleKey = _groom == null ? _styleKey ?? "" : "" });
         string ext = System.IO.Path.GetExtension(path);
         string tmp = path[..^ext.Length] + ".tmp" + ext;
         var err = ResourceSaver.Save(res, tmp);

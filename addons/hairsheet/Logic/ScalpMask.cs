@@ -50,7 +50,7 @@ public static class ScalpMask
             : ScalpPaint.FromMask(headSpaceMesh, Unpack(bits, headSpaceMesh.TriangleCount));
 
     /// <summary>
-    /// One brush stroke: discs of <paramref name="radius"/> pixels along the stroke (at most half a radius apart) mark
+    /// One brush stroke: discs of <paramref name="radius"/> pixels along the stroke (<see cref="SelectionArea.BrushStroke"/>) mark
     /// (<see cref="ScalpPaintMode.Add"/>) or clear the triangles whose centre they cover, that face the camera and that
     /// the mesh itself does not hide (<paramref name="occluder"/>, the scalp's collider, when known). Returns the new
     /// mask, or null when the stroke changed nothing. Bad input (an empty stroke, a non-finite point, a radius that is
@@ -60,25 +60,10 @@ public static class ScalpMask
         ScalpPaintMode mode, in CameraMatrices camera, in RigidTransform head, MeshCollider? occluder = null)
     {
         ArgumentNullException.ThrowIfNull(headSpaceMesh);
-        ArgumentNullException.ThrowIfNull(stroke);
-        if (stroke.Count == 0) throw new ArgumentException("A paint stroke needs at least one point.", nameof(stroke));
-        if (!float.IsFinite(radius) || radius <= 0f) throw new ArgumentOutOfRangeException(nameof(radius), radius, "The brush radius must be a positive number of pixels.");
+        var dabs = SelectionArea.BrushStroke(stroke, radius);   // checks the stroke and the radius first
         var paint = Start(headSpaceMesh, bits, threshold);
-        var cam = StrokeCameras.From(camera);
-        int changed = 0;
-        var last = stroke[0];
-        changed += paint.Paint(cam, SelectionArea.Brush(last, radius), mode, head, occluder);
-        for (int i = 1; i < stroke.Count; i++)
-        {
-            var p = stroke[i];
-            // Discs close enough together to leave no gap between the stroke's points.
-            int steps = Math.Max(1, (int)MathF.Ceiling(Vector2.Distance(last, p) / (0.5f * radius)));
-            for (int k = 1; k <= steps; k++) changed += paint.Paint(cam, SelectionArea.Brush(Vector2.Lerp(last, p, k / (float)steps), radius), mode, head, occluder);
-            last = p;
-        }
-        if (changed == 0 && bits != null) return null;
-        var after = Pack(paint.Triangles);
-        return bits != null && after.AsSpan().SequenceEqual(bits) ? null : after;
+        int changed = paint.Paint(StrokeCameras.From(camera), dabs, mode, head, occluder);
+        return changed == 0 && bits != null ? null : Pack(paint.Triangles);
     }
 
     /// <summary>

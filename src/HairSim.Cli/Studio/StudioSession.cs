@@ -270,10 +270,7 @@ public sealed class StudioSession : IDisposable
             case "brush":
                 if (!float.IsFinite(radius) || radius <= 0f || radius > 2000f)
                     throw new ArgumentException("Brush radius must be in (0, 2000] pixels.");
-                // Dabs at least half a radius apart: the union covers the stroke without a pass per pixel.
-                var last = new Vector2(float.NaN);
-                foreach (var p in pts)
-                    if (!(Vector2.Distance(p, last) < 0.5f * radius)) { areas.Add(SelectionArea.Brush(p, radius)); last = p; }
+                areas.AddRange(SelectionArea.BrushStroke(pts, radius));
                 break;
             default:
                 throw new ArgumentException($"Unknown stroke shape '{shape}': use rectangle, lasso or brush.");
@@ -503,25 +500,17 @@ public sealed class StudioSession : IDisposable
         }
     }
 
-    public string UndoScalp()
-    {
-        lock (_gate)
-        {
-            var paint = PaintOrRefuse();
-            if (!paint.Undo()) return Say("Nothing to undo on the scalp.");
-            _scalpRevision++;
-            return Say($"Scalp stroke undone: {DescribeScalp(paint)}.");
-        }
-    }
+    public string UndoScalp() => StepScalpHistory(undo: true);
+    public string RedoScalp() => StepScalpHistory(undo: false);
 
-    public string RedoScalp()
+    private string StepScalpHistory(bool undo)
     {
         lock (_gate)
         {
             var paint = PaintOrRefuse();
-            if (!paint.Redo()) return Say("Nothing to redo on the scalp.");
+            if (!(undo ? paint.Undo() : paint.Redo())) return Say($"Nothing to {(undo ? "undo" : "redo")} on the scalp.");
             _scalpRevision++;
-            return Say($"Scalp stroke redone: {DescribeScalp(paint)}.");
+            return Say($"Scalp stroke {(undo ? "undone" : "redone")}: {DescribeScalp(paint)}.");
         }
     }
 

@@ -40,6 +40,39 @@ public sealed class SelectionArea
         return new SelectionArea([], center, radius);
     }
 
+    /// <summary>The most dabs one brush stroke may make (a stroke far longer than its radius is refused, not stalled on).</summary>
+    public const int MaxBrushDabs = 100_000;
+
+    /// <summary>
+    /// A brush stroke as dabs of <paramref name="radius"/> along its path: its first point, then dabs at most half a
+    /// radius apart up to each point at least half a radius past the last dab (between two far-apart points too), so
+    /// their union covers the stroke without a gap and without a dab per pixel. Paint or select with all of them at
+    /// once. An empty stroke, a non-finite point, a radius that is not positive or more than
+    /// <see cref="MaxBrushDabs"/> dabs are refused (ArgumentException).
+    /// </summary>
+    public static List<SelectionArea> BrushStroke(IReadOnlyList<Vector2> stroke, float radius)
+    {
+        ArgumentNullException.ThrowIfNull(stroke);
+        if (stroke.Count == 0) throw new ArgumentException("A brush stroke needs at least one point.", nameof(stroke));
+        var first = Brush(stroke[0], radius);
+        var dabs = new List<SelectionArea> { first };
+        float step = 0.5f * radius;
+        var last = stroke[0];
+        for (int i = 1; i < stroke.Count; i++)
+        {
+            var p = stroke[i];
+            Finite(p);
+            float distance = Vector2.Distance(last, p);
+            if (distance < step) continue;
+            int n = (int)MathF.Ceiling(distance / step);
+            if (n > MaxBrushDabs - dabs.Count)
+                throw new ArgumentException($"The brush stroke is too long for its {radius} px radius (more than {MaxBrushDabs:N0} dabs).", nameof(stroke));
+            for (int k = 1; k <= n; k++) dabs.Add(Brush(Vector2.Lerp(last, p, k / (float)n), radius));
+            last = p;
+        }
+        return dabs;
+    }
+
     public bool Contains(Vector2 p)
     {
         if (_polygon.Length == 0) return Vector2.DistanceSquared(p, _center) <= _radius * _radius;

@@ -142,12 +142,7 @@ public sealed class ScalpPaint
     }
 
     /// <summary>The same mask on the same mesh, without the undo history (to grow from while this one is painted on).</summary>
-    public ScalpPaint CopyMask()
-    {
-        var copy = new ScalpPaint(Mesh);
-        _scalp.CopyTo(copy._scalp, 0);
-        return copy;
-    }
+    public ScalpPaint CopyMask() => FromMask(Mesh, _scalp);
 
     private static bool AnyContains(IReadOnlyList<SelectionArea> areas, Vector2 p)
     {
