@@ -63,6 +63,8 @@ class Studio {
   }
 
   async refreshState() {
+    // A state asked for before a command was sent may answer after it: it must not undo the user's change on the page.
+    const issued = this.commands;
     const s = await state();
     this.state = s;
     this.view.setColliders(s.colliders);
@@ -75,11 +77,12 @@ class Studio {
     if (!s.scalp) { if (this.scalpRevision != null) this.scalpRevision = this.view.setScalpMask(null); }
     else if (s.scalp.revision !== this.scalpRevision) this.scalpRevision = this.view.setScalpMask(await binary('scalp'));
     if (!sameArray(s.selection, this.lastSelection)) { this.lastSelection = s.selection; this.view.setSelection(s.selection); }
-    this.showState(s);
+    this.showState(s, issued === this.commands && this.busy === 0);
   }
 
   /** Runs a server command, shows its answer or its error, and refreshes the state. */
   async run(action) {
+    this.commands = (this.commands ?? 0) + 1;
     this.busy++;
     try { this.say(await action()); } catch (e) { this.say(e.message, true); } finally { this.busy--; }
     await this.refreshState();
@@ -251,7 +254,7 @@ class Studio {
     $('shake').checked = this.head.shake;
   }
 
-  showState(s) {
+  showState(s, current = true) {
     const groom = $('groom');
     if (groom.options.length !== s.grooms.length) {
       groom.replaceChildren(...s.grooms.map(g => new Option(`${g.name}: ${g.description}`, g.name)));
@@ -264,7 +267,7 @@ class Studio {
       $(`${name}-value`).textContent = slider.fmt(s.settings[name]);
     }
     if (document.activeElement !== $('path')) $('path').value = s.settings.path;
-    $('volume').checked = !!s.settings.volume;
+    if (current) $('volume').checked = !!s.settings.volume;
     const paintUndo = this.undoTarget !== '';
     $('undo').disabled = (paintUndo ? s.scalp.undoCount : s.undoCount) === 0;
     $('redo').disabled = (paintUndo ? s.scalp.redoCount : s.redoCount) === 0;
