@@ -37,7 +37,7 @@ public static class BenchCommand
     private static readonly CultureInfo Inv = CultureInfo.InvariantCulture;
 
     internal sealed record Row(string Scene, string Part, string Path, int Threads, int Strands, int Particles, int Frames,
-        double MedianMs, double MinMs, double BytesPerStep, int Substeps)
+        double MedianMs, double MinMs, double BytesPerStep, double Substeps)
     {
         /// <summary>Median of each round, when the row was timed in several rounds.</summary>
         public double[] RoundMedians { get; init; } = [];
@@ -185,6 +185,7 @@ public static class BenchCommand
         var times = new double[frames * rounds];
         var roundMedians = new double[rounds];
         var sw = new Stopwatch();
+        long substeps = 0;
         long bytes = GC.GetTotalAllocatedBytes(true);
         for (int i = 0; i < times.Length; i++, f++)
         {
@@ -192,6 +193,7 @@ public static class BenchCommand
             sw.Restart();
             sim.Step(dt, head);
             times[i] = sw.Elapsed.TotalMilliseconds;
+            substeps += sim.Pipeline.LastFrameSubsteps;
         }
         bytes = GC.GetTotalAllocatedBytes(true) - bytes;
         for (int r = 0; r < rounds; r++)
@@ -201,7 +203,7 @@ public static class BenchCommand
             roundMedians[r] = round[frames / 2];
         }
         if (scene.World.CountNonFinite() != 0) throw new InvalidDataException($"{name} ({path}) produced non-finite values.");
-        var row = Summarise(styled ? name + ", styled" : name, "frame", path, threads, scene, times, bytes, times.Length) with { RoundMedians = rounds > 1 ? roundMedians : [] };
+        var row = Summarise(styled ? name + ", styled" : name, "frame", path, threads, scene, times, bytes, times.Length, (double)substeps / times.Length) with { RoundMedians = rounds > 1 ? roundMedians : [] };
         if (!allowAvx512) row = row with { Path = "fast, 8-lane" };
         if (bend == BendModel.SourceTriples) row = row with { Path = row.Path + ", source's triples" };
         Console.Error.WriteLine($"{name,-22} {Label(row),-18} {row.MedianMs,9:F3} ms/frame");
@@ -284,11 +286,12 @@ public static class BenchCommand
         return row;
     }
 
-    internal static Row Summarise(string name, string part, SolverPath path, int threads, HairScene scene, double[] times, long bytes, int frames, int? passesPerFrame = null)
+    /// <param name="passesPerFrame">Steps per frame the row's per-step figures divide by: the substeps actually stepped (the guards may add some), on average; the requested substeps if not given.</param>
+    internal static Row Summarise(string name, string part, SolverPath path, int threads, HairScene scene, double[] times, long bytes, int frames, double? passesPerFrame = null)
     {
         var sorted = (double[])times.Clone();
         Array.Sort(sorted);
-        int substeps = passesPerFrame ?? scene.Settings.Substeps;
+        double substeps = passesPerFrame ?? scene.Settings.Substeps;
         return new Row(name, part, path == SolverPath.Fast ? "fast" : "reference", threads, scene.World.StrandCount, scene.World.ParticleCount,
             frames, sorted[sorted.Length / 2], sorted[0], bytes / (double)(frames * substeps), substeps);
     }
@@ -298,14 +301,14 @@ public static class BenchCommand
     private static string Table(List<Row> rows)
     {
         var sb = new StringBuilder();
-        sb.AppendLine("| scene | part | path | threads | particles | frames timed | ms/frame (median) | ms/step | particle-steps/s | speed-up vs reference | bytes allocated/step |");
-        sb.AppendLine("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+        sb.AppendLine("| scene | part | path | threads | particles | frames timed | ms/frame (median) | steps/frame | ms/step | particle-steps/s | speed-up vs reference | bytes allocated/step |");
+        sb.AppendLine("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
         foreach (var r in rows)
         {
             var reference = rows.Find(x => x.Scene == r.Scene && x.Part == r.Part && x.Path == "reference");
             string speedup = reference == null ? "–" : (reference.MsPerStep / r.MsPerStep).ToString("F1", Inv) + "×";
             sb.AppendLine(string.Create(Inv,
-                $"| {r.Scene} | {r.Part} | {r.Path} | {r.Threads} | {r.Particles:N0} | {r.Frames} | {r.MedianMs:F3} | {r.MsPerStep:F3} | {r.ParticleStepsPerSecond / 1e6:F1} M | {speedup} | {r.BytesPerStep:F0} |"));
+                $"| {r.Scene} | {r.Part} | {r.Path} | {r.Threads} | {r.Particles:N0} | {r.Frames} | {r.MedianMs:F3} | {r.Substeps:0.##} | {r.MsPerStep:F3} | {r.ParticleStepsPerSecond / 1e6:F1} M | {speedup} | {r.BytesPerStep:F0} |"));
         }
         return sb.ToString();
     }
@@ -325,7 +328,7 @@ public static class BenchCommand
         sb.AppendLine(string.Create(Inv, $"- Machine: {CpuModel()}, {Environment.ProcessorCount} logical cores, {RuntimeInformation.OSDescription}"));
         sb.AppendLine($"- Runtime: {RuntimeInformation.FrameworkDescription}, SIMD width {System.Numerics.Vector<float>.Count} floats (Vector<float>), hardware acceleration {System.Numerics.Vector.IsHardwareAccelerated}");
         sb.AppendLine($"- Date: {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC");
-        sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ substeps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn), timed in the same simulation as chunks on, alternating blocks of 10 frames: before/after in one run.");
+        sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Steps/frame: the substeps whole-frame rows actually stepped, on average (the stability guards add some where the head moves far against a segment's length: the 64-particle strands' 4 mm segments), and ms/step = ms/frame ÷ steps/frame. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ steps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn), timed in the same simulation as chunks on, alternating blocks of 10 frames: before/after in one run.");
         sb.AppendLine("- Rows \"…, styled\": the reference scene styled as the style command does (1 s settle, rest pose baked, chin-height cut through every layer, a curl fitted to the 1,035-strand fringe), timed from there. Rows \"fast, source's triples\": the same hair with the source's triple shape matching and a separate follow-the-leader pass (BendModel.SourceTriples, the default before the rest-shape model), in the same run.");
         sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world; ShapeMatch and Length on the source's scheme, whose systems they are), each frame starting from the same warm state (1 s of shaking), on the reference scene. Interpolate is the render interpolation, once per frame (the scene gets default render settings: one render strand between neighbours, 549,840 render points); the whole-frame rows have no render strands (docs/leave-out.md times frames with them).");
         sb.AppendLine("- All rows come from one run on a shared machine (other builds may run at the same time): compare rows within the table, and rerun for absolute numbers.");
@@ -370,7 +373,7 @@ public static class BenchCommand
         if (byLength.Count > 1)
         {
             double best = byLength.Min(r => r.MedianMs / (r.Particles * (double)r.Substeps));
-            var parts = byLength.Select(r => string.Create(Inv, $"{r.Particles / 17_400} → {1e6 * r.MedianMs / (r.Particles * (double)r.Substeps):F2} ns ({r.MedianMs / (r.Particles * (double)r.Substeps) / best:F2}×)"));
+            var parts = byLength.Select(r => string.Create(Inv, $"{r.Particles / 17_400} → {1e6 * r.MedianMs / (r.Particles * (double)r.Substeps):F2} ns ({r.MedianMs / (r.Particles * (double)r.Substeps) / best:F2}×{(r.Substeps > 4.005 ? $", {r.Substeps:F1} substeps per frame: the guards add some while the head shakes" : "")})"));
             double worst = byLength.Max(r => r.MedianMs / (r.Particles * (double)r.Substeps)) / best;
             sb.AppendLine(string.Create(Inv, $"Particles per strand, 17,400 strands, default model, {byLength[0].Threads} thread{(byLength[0].Threads == 1 ? "" : "s")}: cost per particle-step (and against the best length) {string.Join("; ", parts)}. Worst against best: **{worst:F2}×** (target: within 1.3×)."));
         }

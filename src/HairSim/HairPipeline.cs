@@ -71,6 +71,11 @@ public sealed class HairPipeline
     public (int Stepped, int HandedBack) LastFrameChunks => _chunkFrame ? _chunks!.Counts : default;
     /// <summary>Into how many parts the last frame was stepped (1 unless a system such as the hair volume asked for shorter ones).</summary>
     public int LastFrameParts { get; private set; } = 1;
+    /// <summary>
+    /// Substeps stepped in the last frame, over all its parts: the requested <see cref="SimulationSettings.Substeps"/>
+    /// unless the stability guards added some (a fast head on short segments) or the frame was stepped in parts.
+    /// </summary>
+    public int LastFrameSubsteps { get; private set; }
     /// <summary>The context of the last frame (teleport flag, substep length, …).</summary>
     public FrameContext LastFrame => _ctx;
 
@@ -106,6 +111,7 @@ public sealed class HairPipeline
             foreach (var system in _frameStart)
                 if (system is IFrameSplitter splitter) { parts = Math.Max(parts, splitter.PartsOf(_scene, dt, _scale)); splits = true; }
         PrepareColliderMotion(teleported, requested);
+        LastFrameSubsteps = 0;
         if (parts <= 1 && !splits) { StepPart(dt, headTarget, headMove, delta, teleported, requested.Substeps, 0f, 1f); LastFrameParts = 1; }
         else LastFrameParts = StepInParts(dt, headTarget, parts, requested.Substeps);
         _scene.CollidersStepped();
@@ -204,6 +210,7 @@ public sealed class HairPipeline
         // Systems read the guarded copy (α clamp, automatic substeps), so every implementation inherits the guards.
         StabilityGuards.Apply(requested, _guarded, dt, MathF.Max(headMove, _colliderTravel * (to - from)), delta.Angle, teleported, _scale, substeps);
         var st = _guarded;
+        LastFrameSubsteps += st.Substeps;
         ctx.Settings = st;
         ctx.Dt = dt;
         ctx.Substeps = st.Substeps;

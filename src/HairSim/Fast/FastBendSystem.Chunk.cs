@@ -59,6 +59,13 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         for (int s = s0; s < s0 + StrandChunk.Lanes; s++) _chunkBlock[s] = s0;
     }
 
+    /// <summary>The chunk's block of rest directions and joint shares, which the sweep reads in place: prefetched with the chunk's fields.</summary>
+    float[]? IStrandChunkSystem.ChunkBlock(int s0, int first, int cells, out int offset, out int fields)
+    {
+        offset = ChunkBendFields * first; fields = ChunkBendFields;
+        return _chunkActive && s0 < _chunkBlock.Length && _chunkBlock[s0] == s0 ? _chunkBend : null;
+    }
+
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         if (!_chunkActive) return true;

@@ -96,32 +96,39 @@ public sealed partial class FastBendSystem
                 var ux = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovx + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovx + r - lanes), Simd.Ld(ref s, SDx * lanes + h)));
                 var uy = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovy + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovy + r - lanes), Simd.Ld(ref s, SDy * lanes + h)));
                 var uz = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovz + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovz + r - lanes), Simd.Ld(ref s, SDz * lanes + h)));
-                // Where d = e/len: (u − (u·d)d)/len = (u − (u·e)/len² e)/len, whose u·e does not wait for the root.
-                var ue = Simd.MulAdd(uz, ez, Simd.MulAdd(uy, ey, ux * ex)) * inv2;
-                var al = Simd.MulAdd(uz, dz, Simd.MulAdd(uy, dy, ux * dx));
-                var byE = clear & okLen;
-                var tcx = Simd.Sel(byE, Simd.NegMulAdd(ue, ex, ux) * inv, Simd.NegMulAdd(al, dx, ux) * inv);
-                var tcy = Simd.Sel(byE, Simd.NegMulAdd(ue, ey, uy) * inv, Simd.NegMulAdd(al, dy, uy) * inv);
-                var tcz = Simd.Sel(byE, Simd.NegMulAdd(ue, ez, uz) * inv, Simd.NegMulAdd(al, dz, uz) * inv);
-                // Target turned with the parent: Δt = (d_p × c_p) × t.
-                var pdx = Simd.Ld(ref s, Sdx * lanes + h); var pdy = Simd.Ld(ref s, Sdy * lanes + h); var pdz = Simd.Ld(ref s, Sdz * lanes + h);
-                var pcx = Simd.Ld(ref s, Scx * lanes + h); var pcy = Simd.Ld(ref s, Scy * lanes + h); var pcz = Simd.Ld(ref s, Scz * lanes + h);
-                var wx = Simd.MulSub(pdy, pcz, pdz * pcy); var wy = Simd.MulSub(pdz, pcx, pdx * pcz); var wz = Simd.MulSub(pdx, pcy, pdy * pcx);
-                var ttx = Simd.MulSub(wy, tz, wz * ty); var tty = Simd.MulSub(wz, tx, wx * tz); var ttz = Simd.MulSub(wx, ty, wy * tx);
-                // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
-                var a = Simd.Ld(ref rest, p.Oa + r); var b = Simd.Ld(ref rest, p.Ob + r);
-                var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
-                var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
-                var mx = Simd.MulAdd(b, sx, Simd.MulAdd(a, ox, tx)); var my = Simd.MulAdd(b, sy, Simd.MulAdd(a, oy, ty)); var mz = Simd.MulAdd(b, sz, Simd.MulAdd(a, oz, tz));
-                var m2 = Simd.MulAdd(mz, mz, Simd.MulAdd(my, my, mx * mx));
-                var ml = Vector.SquareRoot(m2);
-                var mOk = Vector.GreaterThan(ml, c.Eps);
-                // 1/|m| as |m|/|m|², as 1/len above.
-                var invM = ml * (one / Simd.Sel(mOk, m2, one));
-                var ndx = Simd.Sel(mOk, mx * invM, tx); var ndy = Simd.Sel(mOk, my * invM, ty); var ndz = Simd.Sel(mOk, mz * invM, tz);
-                dx = Simd.Sel(free, ndx, dx); dy = Simd.Sel(free, ndy, dy); dz = Simd.Sel(free, ndz, dz);
-                var nx = Simd.MulAdd(dx, rl, px); var ny = Simd.MulAdd(dy, rl, py); var nz = Simd.MulAdd(dz, rl, pz);
-                var cdx = Simd.Sel(free, nx - x, zero); var cdy = Simd.Sel(free, ny - y, zero); var cdz = Simd.Sel(free, nz - z, zero);
+                // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
+                // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
+                V mx = zero, my = zero, mz = zero, ml = zero, cdx = zero, cdy = zero, cdz = zero;
+                var mOk = Vector<int>.Zero;
+                if (!Vector.EqualsAll(free, Vector<int>.Zero))
+                {
+                    // Where d = e/len: (u − (u·d)d)/len = (u − (u·e)/len² e)/len, whose u·e does not wait for the root.
+                    var ue = Simd.MulAdd(uz, ez, Simd.MulAdd(uy, ey, ux * ex)) * inv2;
+                    var al = Simd.MulAdd(uz, dz, Simd.MulAdd(uy, dy, ux * dx));
+                    var byE = clear & okLen;
+                    var tcx = Simd.Sel(byE, Simd.NegMulAdd(ue, ex, ux) * inv, Simd.NegMulAdd(al, dx, ux) * inv);
+                    var tcy = Simd.Sel(byE, Simd.NegMulAdd(ue, ey, uy) * inv, Simd.NegMulAdd(al, dy, uy) * inv);
+                    var tcz = Simd.Sel(byE, Simd.NegMulAdd(ue, ez, uz) * inv, Simd.NegMulAdd(al, dz, uz) * inv);
+                    // Target turned with the parent: Δt = (d_p × c_p) × t.
+                    var pdx = Simd.Ld(ref s, Sdx * lanes + h); var pdy = Simd.Ld(ref s, Sdy * lanes + h); var pdz = Simd.Ld(ref s, Sdz * lanes + h);
+                    var pcx = Simd.Ld(ref s, Scx * lanes + h); var pcy = Simd.Ld(ref s, Scy * lanes + h); var pcz = Simd.Ld(ref s, Scz * lanes + h);
+                    var wx = Simd.MulSub(pdy, pcz, pdz * pcy); var wy = Simd.MulSub(pdz, pcx, pdx * pcz); var wz = Simd.MulSub(pdx, pcy, pdy * pcx);
+                    var ttx = Simd.MulSub(wy, tz, wz * ty); var tty = Simd.MulSub(wz, tx, wx * tz); var ttz = Simd.MulSub(wx, ty, wy * tx);
+                    // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
+                    var a = Simd.Ld(ref rest, p.Oa + r); var b = Simd.Ld(ref rest, p.Ob + r);
+                    var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
+                    var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
+                    mx = Simd.MulAdd(b, sx, Simd.MulAdd(a, ox, tx)); my = Simd.MulAdd(b, sy, Simd.MulAdd(a, oy, ty)); mz = Simd.MulAdd(b, sz, Simd.MulAdd(a, oz, tz));
+                    var m2 = Simd.MulAdd(mz, mz, Simd.MulAdd(my, my, mx * mx));
+                    ml = Vector.SquareRoot(m2);
+                    mOk = Vector.GreaterThan(ml, c.Eps);
+                    // 1/|m| as |m|/|m|², as 1/len above.
+                    var invM = ml * (one / Simd.Sel(mOk, m2, one));
+                    var ndx = Simd.Sel(mOk, mx * invM, tx); var ndy = Simd.Sel(mOk, my * invM, ty); var ndz = Simd.Sel(mOk, mz * invM, tz);
+                    dx = Simd.Sel(free, ndx, dx); dy = Simd.Sel(free, ndy, dy); dz = Simd.Sel(free, ndz, dz);
+                    var nx = Simd.MulAdd(dx, rl, px); var ny = Simd.MulAdd(dy, rl, py); var nz = Simd.MulAdd(dz, rl, pz);
+                    cdx = Simd.Sel(free, nx - x, zero); cdy = Simd.Sel(free, ny - y, zero); cdz = Simd.Sel(free, nz - z, zero);
+                }
                 x += cdx; y += cdy; z += cdz;
                 Simd.St(ref d, p.Ox + r, x); Simd.St(ref d, p.Oy + r, y); Simd.St(ref d, p.Oz + r, z);
                 // The row above takes its kick now that this row's correction is known.

@@ -93,44 +93,51 @@ public sealed partial class FastBendSystem
                 var ux = Fms(c.H, Ld16(ref d, p.Ovx + r), Fma(c.H, Ld16(ref d, p.Ovx + r - lanes), Ld16(ref s, SDx * lanes + h)));
                 var uy = Fms(c.H, Ld16(ref d, p.Ovy + r), Fma(c.H, Ld16(ref d, p.Ovy + r - lanes), Ld16(ref s, SDy * lanes + h)));
                 var uz = Fms(c.H, Ld16(ref d, p.Ovz + r), Fma(c.H, Ld16(ref d, p.Ovz + r - lanes), Ld16(ref s, SDz * lanes + h)));
-                // Where d = e/len: (u − (u·d)d)/len = (u − (u·e)/len² e)/len, whose u·e does not wait for the root.
-                var ue = Fma(uz, ez, Fma(uy, ey, ux * ex)) * inv2;
-                var tcx = Fnma(ue, ex, ux) * inv; var tcy = Fnma(ue, ey, uy) * inv; var tcz = Fnma(ue, ez, uz) * inv;
-                var byE = clear & okLen;
-                if (!AllSet(byE))
+                // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
+                // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
+                bool allFree = AllSet(free), noneFree = free == V.Zero;
+                V mx = zero, my = zero, mz = zero, ml = zero, mOk = zero;
+                V cdx = zero, cdy = zero, cdz = zero;
+                if (!noneFree)
                 {
-                    var al = Fma(uz, dz, Fma(uy, dy, ux * dx));
-                    tcx = Sel16(byE, tcx, Fnma(al, dx, ux) * inv); tcy = Sel16(byE, tcy, Fnma(al, dy, uy) * inv); tcz = Sel16(byE, tcz, Fnma(al, dz, uz) * inv);
+                    // Where d = e/len: (u − (u·d)d)/len = (u − (u·e)/len² e)/len, whose u·e does not wait for the root.
+                    var ue = Fma(uz, ez, Fma(uy, ey, ux * ex)) * inv2;
+                    var tcx = Fnma(ue, ex, ux) * inv; var tcy = Fnma(ue, ey, uy) * inv; var tcz = Fnma(ue, ez, uz) * inv;
+                    var byE = clear & okLen;
+                    if (!AllSet(byE))
+                    {
+                        var al = Fma(uz, dz, Fma(uy, dy, ux * dx));
+                        tcx = Sel16(byE, tcx, Fnma(al, dx, ux) * inv); tcy = Sel16(byE, tcy, Fnma(al, dy, uy) * inv); tcz = Sel16(byE, tcz, Fnma(al, dz, uz) * inv);
+                    }
+                    // Target turned with the parent: Δt = (d_p × c_p) × t.
+                    var pdx = Ld16(ref s, Sdx * lanes + h); var pdy = Ld16(ref s, Sdy * lanes + h); var pdz = Ld16(ref s, Sdz * lanes + h);
+                    var pcx = Ld16(ref s, Scx * lanes + h); var pcy = Ld16(ref s, Scy * lanes + h); var pcz = Ld16(ref s, Scz * lanes + h);
+                    var wx = Fms(pdy, pcz, pdz * pcy); var wy = Fms(pdz, pcx, pdx * pcz); var wz = Fms(pdx, pcy, pdy * pcx);
+                    var ttx = Fms(wy, tz, wz * ty); var tty = Fms(wz, tx, wx * tz); var ttz = Fms(wx, ty, wy * tx);
+                    // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
+                    var a = Ld16(ref rest, p.Oa + r); var b = Ld16(ref rest, p.Ob + r);
+                    var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
+                    var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
+                    mx = Fma(b, sx, Fma(a, ox, tx)); my = Fma(b, sy, Fma(a, oy, ty)); mz = Fma(b, sz, Fma(a, oz, tz));
+                    var m2 = Fma(mz, mz, Fma(my, my, mx * mx));
+                    ml = Vector512.Sqrt(m2);
+                    mOk = Vector512.GreaterThan(ml, c.Eps);
+                    if (AllSet(mOk))
+                    {
+                        var invM = ml * (one / m2);
+                        if (allFree) { dx = mx * invM; dy = my * invM; dz = mz * invM; }
+                        else { dx = Sel16(free, mx * invM, dx); dy = Sel16(free, my * invM, dy); dz = Sel16(free, mz * invM, dz); }
+                    }
+                    else
+                    {
+                        var invM = ml * (one / Sel16(mOk, m2, one));
+                        var ndx = Sel16(mOk, mx * invM, tx); var ndy = Sel16(mOk, my * invM, ty); var ndz = Sel16(mOk, mz * invM, tz);
+                        dx = Sel16(free, ndx, dx); dy = Sel16(free, ndy, dy); dz = Sel16(free, ndz, dz);
+                    }
+                    var nx = Fma(dx, rl, px); var ny = Fma(dy, rl, py); var nz = Fma(dz, rl, pz);
+                    cdx = nx - x; cdy = ny - y; cdz = nz - z;
+                    if (!allFree) { cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
                 }
-                // Target turned with the parent: Δt = (d_p × c_p) × t.
-                var pdx = Ld16(ref s, Sdx * lanes + h); var pdy = Ld16(ref s, Sdy * lanes + h); var pdz = Ld16(ref s, Sdz * lanes + h);
-                var pcx = Ld16(ref s, Scx * lanes + h); var pcy = Ld16(ref s, Scy * lanes + h); var pcz = Ld16(ref s, Scz * lanes + h);
-                var wx = Fms(pdy, pcz, pdz * pcy); var wy = Fms(pdz, pcx, pdx * pcz); var wz = Fms(pdx, pcy, pdy * pcx);
-                var ttx = Fms(wy, tz, wz * ty); var tty = Fms(wz, tx, wx * tz); var ttz = Fms(wx, ty, wy * tx);
-                // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
-                var a = Ld16(ref rest, p.Oa + r); var b = Ld16(ref rest, p.Ob + r);
-                var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
-                var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
-                var mx = Fma(b, sx, Fma(a, ox, tx)); var my = Fma(b, sy, Fma(a, oy, ty)); var mz = Fma(b, sz, Fma(a, oz, tz));
-                var m2 = Fma(mz, mz, Fma(my, my, mx * mx));
-                var ml = Vector512.Sqrt(m2);
-                var mOk = Vector512.GreaterThan(ml, c.Eps);
-                bool allFree = AllSet(free);
-                if (AllSet(mOk))
-                {
-                    var invM = ml * (one / m2);
-                    if (allFree) { dx = mx * invM; dy = my * invM; dz = mz * invM; }
-                    else { dx = Sel16(free, mx * invM, dx); dy = Sel16(free, my * invM, dy); dz = Sel16(free, mz * invM, dz); }
-                }
-                else
-                {
-                    var invM = ml * (one / Sel16(mOk, m2, one));
-                    var ndx = Sel16(mOk, mx * invM, tx); var ndy = Sel16(mOk, my * invM, ty); var ndz = Sel16(mOk, mz * invM, tz);
-                    dx = Sel16(free, ndx, dx); dy = Sel16(free, ndy, dy); dz = Sel16(free, ndz, dz);
-                }
-                var nx = Fma(dx, rl, px); var ny = Fma(dy, rl, py); var nz = Fma(dz, rl, pz);
-                V cdx = nx - x, cdy = ny - y, cdz = nz - z;
-                if (!allFree) { cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
                 x += cdx; y += cdy; z += cdz;
                 St16(ref d, p.Ox + r, x); St16(ref d, p.Oy + r, y); St16(ref d, p.Oz + r, z);
                 // The row above takes its kick now that this row's correction is known.

@@ -1,3 +1,4 @@
+using System.Runtime.Intrinsics.X86;
 using System.Runtime.InteropServices;
 using System.Runtime.CompilerServices;
 using System.Numerics;
@@ -92,6 +93,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     {
         bool rowsCached = _cache && _cachedAt.Length == w.StrandCount && _pinRows.Length == 3 * w.ParticleCount;
         long at = w.EditStamp + 1L;
+        if (rowsCached) PrefetchPinRows(w, s0 + StrandChunk.Lanes);
         if (rowsCached && _pinRowsAt[s0] == at && _pinRowsMask[s0] == chunk.PinnedRows && OwnsBlock(s0))
         {
             CopyPinRows(chunk, fromBlock: true);
@@ -111,6 +113,28 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     }
 
     /// <summary>The chunk's pinned rest rows to (or from) its block of <see cref="_pinRows"/>.</summary>
+    /// <summary>
+    /// The next chunk's cached pinned rows (a few scattered lines per chunk, which the hardware prefetcher does not
+    /// foresee), fetched while this chunk computes.
+    /// </summary>
+    private unsafe void PrefetchPinRows(HairWorld w, int s0)
+    {
+        if (!Sse.IsSupported || s0 >= w.StrandCount) return;
+        const int L = StrandChunk.Lanes;
+        int block = 3 * w.StrandFirst[s0], h = w.StrandCapacity[s0];
+        if (block + 3 * h * L > _pinRows.Length) return;
+        fixed (float* p = &_pinRows[block])
+            for (ulong rows = _pinRowsMask[s0]; rows != 0; rows &= rows - 1)
+            {
+                int k = BitOperations.TrailingZeroCount(rows);
+                for (int f = 0; f < 3; f++)
+                {
+                    byte* line = (byte*)(p + (f * h + k) * L);
+                    Sse.Prefetch0(line); Sse.Prefetch0(line + 64);
+                }
+            }
+    }
+
     private void CopyPinRows(scoped StrandChunk chunk, bool fromBlock)
     {
         const int L = StrandChunk.Lanes;

@@ -113,6 +113,12 @@ internal interface IStrandChunkSystem
     /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
     void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
     /// <summary>
+    /// Per-chunk data the system reads in place (not through the tile) for the chunk from strand s0 whose first
+    /// particle is <paramref name="first"/>: <paramref name="fields"/> runs of <paramref name="cells"/> floats from
+    /// <paramref name="offset"/>, for the runner to prefetch with the chunk's fields. Null if none.
+    /// </summary>
+    float[]? ChunkBlock(int s0, int first, int cells, out int offset, out int fields) { offset = 0; fields = 0; return null; }
+    /// <summary>
     /// Substep <paramref name="substep"/> on the chunk. False: nothing was changed, and this system cannot handle
     /// the chunk now (e.g. coinciding particles); the runner then finishes the chunk's frame through <see cref="IHairSystem.Run"/>.
     /// </summary>
@@ -255,7 +261,7 @@ internal sealed class StrandChunkRunner
         var chunk = new StrandChunk(tile, firsts, pinned, height, s0);
         foreach (var c in _chunkSystems) c.PrepareChunk(w, s0, chunk);
         // The next chunk's data is fetched from memory while this one computes, a slice after each system.
-        var prefetch = new Prefetcher(w, first + StrandChunk.Lanes * height, height, _needs);
+        var prefetch = new Prefetcher(w, s0 + StrandChunk.Lanes, first + StrandChunk.Lanes * height, height, _needs, _chunkSystems);
         int slice = (prefetch.Lines + ctx.Substeps * _chunkSystems.Length - 1) / (ctx.Substeps * _chunkSystems.Length);
         for (int s = 0; s < ctx.Substeps; s++)
             for (int k = 0; k < _chunkSystems.Length; k++)
@@ -451,19 +457,21 @@ internal sealed class StrandChunkRunner
 }
 
 /// <summary>
-/// Software prefetch of the next chunk's fields into L2, spread over the current chunk's work. The hardware
+/// Software prefetch of the next chunk's fields (and the blocks systems read in place, such as the bend sweep's rest
+/// directions) into L1, spread over the current chunk's work: into L1 rather than L2 measured 2–8 % faster frames
+/// (the lines come late enough in the chunk to stay there until its loads). The hardware
 /// prefetcher alone leaves the chunk loads waiting on memory: each field is a separate 2 KB stream touched once per
 /// chunk, with microseconds of compute in between, so it never runs far enough ahead. Addresses are taken once per
 /// chunk; a prefetch is only a hint, so one into an array the GC has since moved costs nothing but the miss.
 /// </summary>
 internal unsafe struct Prefetcher
 {
-    private const int MaxFields = 11;
+    private const int MaxFields = 16;
     private fixed long _field[MaxFields];
     private int _cursor;
     private readonly int _linesPerField;
 
-    public Prefetcher(HairWorld w, int first, int height, ChunkFields needs)
+    public Prefetcher(HairWorld w, int s0, int first, int height, ChunkFields needs, IStrandChunkSystem[] systems)
     {
         _cursor = 0;
         int n = 0, cells = StrandChunk.Lanes * height;
@@ -475,6 +483,12 @@ internal unsafe struct Prefetcher
             Add(w.VelX, first, ref n); Add(w.VelY, first, ref n); Add(w.VelZ, first, ref n); Add(w.InvMass, first, ref n);
             if ((needs & ChunkFields.RestLength) != 0) Add(w.RestLength, first, ref n);
             if ((needs & ChunkFields.Shape) != 0) { Add(w.ShapePrev, first, ref n); Add(w.ShapeMid, first, ref n); Add(w.ShapeNext, first, ref n); }
+            foreach (var c in systems)
+            {
+                var block = c.ChunkBlock(s0, first, cells, out int offset, out int fields);
+                if (block == null || offset < 0 || (long)offset + (long)fields * cells > block.Length) continue;
+                for (int f = 0; f < fields && n < MaxFields; f++) Add(block, offset + f * cells, ref n);
+            }
         }
         Lines = n * _linesPerField;
     }
@@ -489,7 +503,7 @@ internal unsafe struct Prefetcher
         for (int stop = Math.Min(Lines, _cursor + count); _cursor < stop; _cursor++)
         {
             int f = _cursor / _linesPerField;
-            Sse.Prefetch1((byte*)_field[f] + (_cursor - f * _linesPerField) * 64);
+            Sse.Prefetch0((byte*)_field[f] + (_cursor - f * _linesPerField) * 64);
         }
     }
 }

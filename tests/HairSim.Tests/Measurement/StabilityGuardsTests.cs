@@ -128,6 +128,23 @@ public class StabilityGuardsTests
         Assert.Equal(16, sim.Pipeline.LastFrame.Substeps);
         Assert.Equal(1 / 240f, sim.Pipeline.LastFrame.H, 6);
         Assert.Equal(4, scene.Settings.Substeps); // the user's settings are left alone
+        Assert.Equal(16, sim.Pipeline.LastFrameSubsteps);
+        sim.Step(1 / 240f);
+        Assert.Equal(4, sim.Pipeline.LastFrameSubsteps); // counted per frame, not summed over frames
+    }
+
+    [Fact]
+    public void LastFrameSubstepsCountsEveryPartOfASplitFrame()
+    {
+        // Hair volume on 1 cm hair at 30 Hz steps each frame in several parts, each with its share of the substeps:
+        // the count is what the pipeline stepped over all of them (what a profiler or the bench divides by).
+        var scene = CrossingSheets.Scene(new VolumeSettings(), SolverPath.Fast, scale: 0.04f);
+        var sim = new HairSimulation(scene);
+        sim.Step(1f / 30);
+        int parts = sim.Pipeline.LastFrameParts;
+        Assert.True(parts > 1, $"{parts} parts");
+        Assert.InRange(sim.Pipeline.LastFrameSubsteps, parts, 4 * parts);
+        Assert.True(sim.Pipeline.LastFrameSubsteps >= scene.Settings.Substeps);
     }
 
     [Fact]
