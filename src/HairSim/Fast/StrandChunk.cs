@@ -473,7 +473,7 @@ internal unsafe struct Prefetcher
 
     public Prefetcher(HairWorld w, int s0, int first, int height, ChunkFields needs, IStrandChunkSystem[] systems)
     {
-        _cursor = 0;
+        _cursor = 0; _fieldAt = 0; _lineAt = 0;
         int n = 0, cells = StrandChunk.Lanes * height;
         _linesPerField = cells * sizeof(float) / 64;
         // Nothing past the world's end.
@@ -500,10 +500,19 @@ internal unsafe struct Prefetcher
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public void Next(int count)
     {
-        for (int stop = Math.Min(Lines, _cursor + count); _cursor < stop; _cursor++)
+        // Field by field, line by line (no division per line).
+        int left = Math.Min(Lines - _cursor, count);
+        if (left <= 0) return;
+        _cursor += left;
+        int field = _fieldAt, line = _lineAt, per = _linesPerField;
+        byte* p = (byte*)_field[field] + line * 64;
+        for (; left > 0; left--)
         {
-            int f = _cursor / _linesPerField;
-            Sse.Prefetch0((byte*)_field[f] + (_cursor - f * _linesPerField) * 64);
+            Sse.Prefetch0(p);
+            p += 64;
+            if (++line == per && ++field < MaxFields) { line = 0; p = (byte*)_field[field]; }
         }
+        _fieldAt = field; _lineAt = line;
     }
+    private int _fieldAt, _lineAt;
 }
