@@ -54,6 +54,8 @@ public static class BenchCommand
         var chunkPairs = new List<(Row On, Row Off)>();
         var total = Stopwatch.StartNew();
         using var parallel = new ParallelDispatcher(threads);
+        var checkBefore = MachineCheck.Measure(threads);
+        Console.Error.WriteLine($"machine check before the rows: {MachineCheck.Describe(checkBefore)}");
 
         // Whole frames: the reference scene first, then the scaling series.
         var scenes = new List<(string Name, GroomSettings Groom)> { ("reference 435×40×16", GroomSettings.Reference()) };
@@ -134,6 +136,8 @@ public static class BenchCommand
                     rows.Add(OneSystem(groom, system, SolverPath.Fast, SequentialDispatcher.Instance, 1, frames, allowAvx512: false));
             }
         }
+        var checkAfter = MachineCheck.Measure(threads);
+        Console.Error.WriteLine($"machine check after the rows: {MachineCheck.Describe(checkAfter)}");
         total.Stop();
 
         var table = Table(rows);
@@ -141,7 +145,7 @@ public static class BenchCommand
         Console.WriteLine(table);
         Console.WriteLine($"bench took {total.Elapsed.TotalSeconds:F0} s");
         foreach (var line in MeshHeadBench.Lines(meshPairs)) Console.WriteLine(line);
-        if (outPath != null) WriteDoc(outPath, table, command, rows, chunkPairs, threads, frames, warmup, rounds, meshPairs);
+        if (outPath != null) WriteDoc(outPath, table, command, rows, chunkPairs, threads, frames, warmup, rounds, meshPairs, (checkBefore, checkAfter));
         return 0;
     }
 
@@ -314,7 +318,7 @@ public static class BenchCommand
     }
 
     private static void WriteDoc(string path, string table, string command, List<Row> rows, List<(Row On, Row Off)> chunkPairs, int threads, int frames, int warmup, int rounds,
-        List<(Row Mesh, Row Ellipsoid)> meshPairs)
+        List<(Row Mesh, Row Ellipsoid)> meshPairs, (MachineCheck.Result Before, MachineCheck.Result After) check)
     {
         var sb = new StringBuilder();
         sb.AppendLine("# Performance");
@@ -326,6 +330,7 @@ public static class BenchCommand
         sb.AppendLine($"Command: `{command}`");
         sb.AppendLine();
         sb.AppendLine(string.Create(Inv, $"- Machine: {CpuModel()}, {Environment.ProcessorCount} logical cores, {RuntimeInformation.OSDescription}"));
+        sb.AppendLine($"- Machine check (`MachineCheck`, no HairSim code: eight independent FMA chains per thread, and sums over a 64 MB array), before the rows: {MachineCheck.Describe(check.Before)}; after them: {MachineCheck.Describe(check.After)}. On a shared virtual machine these move from run to run, and the rows with them.");
         sb.AppendLine($"- Runtime: {RuntimeInformation.FrameworkDescription}, SIMD width {System.Numerics.Vector<float>.Count} floats (Vector<float>), hardware acceleration {System.Numerics.Vector.IsHardwareAccelerated}");
         sb.AppendLine($"- Date: {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC");
         sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Steps/frame: the substeps whole-frame rows actually stepped, on average (the stability guards add some where the head moves far against a segment's length: the 64-particle strands' 4 mm segments), and ms/step = ms/frame ÷ steps/frame. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ steps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn), timed in the same simulation as chunks on, alternating blocks of 10 frames: before/after in one run.");
