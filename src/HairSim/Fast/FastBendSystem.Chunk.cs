@@ -14,6 +14,8 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
     bool IStrandChunkSystem.SupportsChunks => UsesWide;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
     bool IStrandChunkSystem.TakesCutStrands => true;
+    /// <summary>The sweep fetches a share of the next chunk's data per row (<see cref="StrandChunk.PrefetchRow"/>).</summary>
+    bool IStrandChunkSystem.SweepsRows => _chunkActive;
 
     // This frame's settings, for PrepareChunk (which gets no context).
     private float _chunkSag, _chunkH, _chunkZeta;
@@ -75,7 +77,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
             t.Offset(StrandChunk.X), t.Offset(StrandChunk.Y), t.Offset(StrandChunk.Z),
             t.Offset(StrandChunk.VelX), t.Offset(StrandChunk.VelY), t.Offset(StrandChunk.VelZ),
             t.Offset(StrandChunk.InvMass), t.Offset(StrandChunk.RestLength),
-            0, cells, 2 * cells, 3 * cells, 4 * cells);
+            0, cells, 2 * cells, 3 * cells, 4 * cells, chunk.Prefetch);
         Sweep16(ref t.Data[0], ref _chunkBend[ChunkBendFields * chunk.Firsts[0]], chunk.Height, in p);
         return true;
     }

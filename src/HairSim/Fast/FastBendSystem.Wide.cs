@@ -51,6 +51,7 @@ public sealed partial class FastBendSystem
         }
         for (int k = 1; k < rows; k++)
         {
+            Prefetcher.Row(p.Prefetch);
             for (int h = 0; h < lanes; h += width)
             {
                 int r = k * lanes + h;

@@ -220,14 +220,17 @@ public sealed partial class FastBendSystem : IHairSystem
         public readonly float MaxSpeed;
         public readonly float Qx, Qy, Qz, Qw;
         public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Orx, Ory, Orz, Oa, Ob, Lanes;
+        /// <summary>The chunk runner's prefetch of the next chunk, advanced once per row (0: none).</summary>
+        public readonly nint Prefetch;
 
         public SweepParams(FrameContext ctx, int substep, scoped StrandScratch t, int lanes)
             : this(ctx, substep, lanes, t.Offset(TX), t.Offset(TY), t.Offset(TZ), t.Offset(TVx), t.Offset(TVy), t.Offset(TVz), t.Offset(TM), t.Offset(TL),
                 t.Offset(TRx), t.Offset(TRy), t.Offset(TRz), t.Offset(TA), t.Offset(TB)) { }
 
         public SweepParams(FrameContext ctx, int substep, int lanes, int ox, int oy, int oz, int ovx, int ovy, int ovz, int om, int ol,
-            int orx, int ory, int orz, int oa, int ob)
+            int orx, int ory, int orz, int oa, int ob, nint prefetch = 0)
         {
+            Prefetch = prefetch;
             var st = ctx.Settings;
             float h = ctx.H;
             H = h; InvH = 1f / h;

@@ -1,0 +1,46 @@
+using System.Runtime.Intrinsics.X86;
+using HairSim.Fast;
+using HairSim.Measurement;
+
+namespace HairSim.Tests.Fast;
+
+public class PrefetcherTests
+{
+    [Theory]
+    [InlineData(16, 4, 15)] // the reference strands, 4 substeps, one call per swept row
+    [InlineData(16, 1, 4)]  // one substep, a slice after each of four systems
+    [InlineData(3, 4, 2)]
+    [InlineData(64, 5, 63)]
+    public void PacedCallsFetchEveryLineOfTheNextChunkOnce(int particles, int substeps, int callsPerSubstep)
+    {
+        if (!Sse.IsSupported) return; // prefetches are x86 hints; elsewhere nothing is fetched
+        var g = CanonicalCases.SmallGroom(particles, 4, 32);
+        var w = GroomBuilder.BuildScene(g, new SimulationSettings()).World;
+        var p = new Prefetcher(w, 32, w.StrandFirst[32], particles, ChunkFields.RestLength, []);
+        // Positions, velocities, masses and rest lengths: 8 fields of 32 strands' particles, in 64-byte lines.
+        Assert.Equal(8 * 32 * particles * sizeof(float) / 64, p.Lines);
+        int calls = substeps * callsPerSubstep;
+        p.PerCall = (p.Lines + calls - 1) / calls;
+        for (int c = 0; c < calls; c++)
+        {
+            int before = p.Issued;
+            p.Next(p.PerCall);
+            Assert.InRange(p.Issued - before, 0, p.PerCall); // small steps, never a burst
+        }
+        Assert.Equal(p.Lines, p.Issued);
+        p.Next(100);
+        Assert.Equal(p.Lines, p.Issued); // nothing past the chunk
+    }
+
+    [Fact]
+    public void NothingIsFetchedPastTheWorldsEnd()
+    {
+        var g = CanonicalCases.SmallGroom(16, 1, 32);
+        var w = GroomBuilder.BuildScene(g, new SimulationSettings()).World;
+        // The chunk after the last one does not exist.
+        var p = new Prefetcher(w, 32, w.ParticleCount, 16, ChunkFields.RestLength, []);
+        Assert.Equal(0, p.Lines);
+        p.Next(10);
+        Assert.Equal(0, p.Issued);
+    }
+}
