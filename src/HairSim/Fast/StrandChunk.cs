@@ -226,7 +226,7 @@ internal sealed class StrandChunkRunner
                 continue;
             }
             if (ordinaryFrom < s0) RunOrdinary(scene, ctx, ordinaryFrom, s0, 0, 0);
-            if (!cleared) { ClearFixedRows(tile, tileRows); cleared = true; }
+            if (!cleared) { ClearFixedRows(tile, tileRows, w.StrandCapacity[s0]); cleared = true; }
             for (int l = 0; l < StrandChunk.Lanes; l++) firsts[l] = w.StrandFirst[s0 + l];
             stepped++;
             if (!RunChunk(scene, ctx, s0, tile, tileRows, firsts, pastCuts)) handedBack++;
@@ -379,8 +379,13 @@ internal sealed class StrandChunkRunner
                 _systems[k].Run(scene, ctx, s, begin, end);
     }
 
-    private static void ClearFixedRows(scoped StrandScratch tile, int tileRows)
+    private static void ClearFixedRows(scoped StrandScratch tile, int tileRows, int height)
     {
+        // Short strands' loads fill only their own rows: the rows past them start at zero (the stack tile is not
+        // cleared), so every row a system reads holds a finite value (later chunks leave their own finite values there).
+        if (height <= Transpose.MaxShort && Transpose.ShortAvailable)
+            for (int f = 0; f < StrandChunk.FieldCount; f++)
+                tile.Data.Slice(tile.Offset(f) + height * StrandChunk.Lanes, (tileRows - height) * StrandChunk.Lanes).Clear();
         // Goal rows −1, 0, 15 and 16: no triple fills them (triples are 1 … 14).
         for (int g = 0; g < 9; g++)
         {
@@ -413,6 +418,13 @@ internal sealed class StrandChunkRunner
             Transpose.In16Wide(ref Unsafe.Add(ref s, 16 * StrandChunk.Rows), ref Unsafe.Add(ref row0, 16), L);
             return;
         }
+        if (height <= Transpose.MaxShort && Transpose.ShortAvailable)
+        {
+            // Short strands: rows 0 … height − 1 picked out of the chunk's own floats (rows past them keep what they held).
+            Transpose.InShort(ref s, height, ref row0, L);
+            Transpose.InShort(ref Unsafe.Add(ref s, 16 * height), height, ref Unsafe.Add(ref row0, 16), L);
+            return;
+        }
         int blocks = (height + 15) / 16;
         if (first + (L - 1) * height + 16 * blocks <= src.Length)
         {
@@ -438,6 +450,14 @@ internal sealed class StrandChunkRunner
     private static void Store(scoped StrandScratch tile, int field, float[] dst, int first, int height)
     {
         ref float row0 = ref tile.Data[tile.Offset(field)];
+        if (height <= Transpose.MaxShort && Transpose.ShortAvailable)
+        {
+            // Short strands: the chunk's 32 · height floats written exactly.
+            ref float to = ref Simd.At(dst, first);
+            Transpose.OutShort(ref row0, StrandChunk.Lanes, ref to, height);
+            Transpose.OutShort(ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes, ref Unsafe.Add(ref to, 16 * height), height);
+            return;
+        }
         if (height != StrandChunk.Rows)
         {
             // Other capacities, 16 rows at a time. Whole blocks store 16 floats per strand, inside it. The last block

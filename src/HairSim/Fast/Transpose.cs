@@ -10,7 +10,7 @@ namespace HairSim.Fast;
 /// 64 floats instead of 64 scalar loads and stores. With AVX-512, 16 strands of 16 particles are transposed as one
 /// 16 × 16 block in registers (<see cref="In16Wide"/>, <see cref="Out16Wide"/>).
 /// </summary>
-internal static class Transpose
+internal static partial class Transpose
 {
     /// <summary>True when the 8 × 8 transpose is available and Vector&lt;float&gt; is 8 wide (the tile's lane count).</summary>
     public static bool Available => Avx.IsSupported && System.Numerics.Vector<float>.Count == 8;

@@ -80,4 +80,29 @@ public class TransposeTests
         if (15 * stride + 16 > 16 * stride && whole < 16)
             for (int i = 16 * stride; i < dst.Length; i++) Assert.Equal(-1f, dst[i]);
     }
+
+    [Theory]
+    [InlineData(2)] [InlineData(3)] [InlineData(4)]
+    public void ShortTransposesMoveParticleKOfStrandLToRowKColumnLAndBack(int h)
+    {
+        if (!Transpose.ShortAvailable) return; // AVX-512 only; chunks (their only user) need it too
+        // 16 strands of h particles with a guard float on either side, which neither transpose may touch.
+        var s = new float[16 * h + 2];
+        for (int i = 0; i < s.Length; i++) s[i] = i * 1.25f - 3f;
+        var tile = new float[(h + 1) * Lanes];
+        Array.Fill(tile, -99f);
+        Transpose.InShort(ref s[1], h, ref tile[16], Lanes);
+        for (int l = 0; l < 16; l++)
+            for (int k = 0; k < h; k++)
+                Assert.Equal(s[1 + l * h + k], tile[k * Lanes + 16 + l]);
+        for (int k = 0; k < h; k++)
+            for (int l = 0; l < 16; l++) Assert.Equal(-99f, tile[k * Lanes + l]); // other columns untouched
+        Assert.All(tile.AsSpan(h * Lanes).ToArray(), v => Assert.Equal(-99f, v)); // rows past the strands untouched
+
+        var back = new float[16 * h + 2];
+        back[0] = 42f; back[^1] = 43f;
+        Transpose.OutShort(ref tile[16], Lanes, ref back[1], h);
+        Assert.Equal(s.AsSpan(1, 16 * h).ToArray(), back.AsSpan(1, 16 * h).ToArray());
+        Assert.Equal(42f, back[0]); Assert.Equal(43f, back[^1]);
+    }
 }
