@@ -14,7 +14,7 @@ namespace HairSim.Cli;
 /// core, in the same run. Warm-up frames first, then repeated timed frames; the median is reported. Per-system
 /// rows time one system alone (a pipeline holding only that system) from the same warm state.
 /// </summary>
-public static class BenchCommand
+public static partial class BenchCommand
 {
     public const string Description = "Speed of the reference and fast paths, 1 thread and every core: the reference scene, styled hair, 1k … 100k strands, 3 … 64 particles per strand, each system alone; ms per frame, particle-steps/s, speed-up, bytes allocated per step.";
 
@@ -74,28 +74,30 @@ public static class BenchCommand
             int refFrames = Math.Max(3, (int)Math.Min(frames, frames * 278_400L / Math.Max(1, particles)));
             int refWarm = Math.Max(1, Math.Min(warmup, refFrames / 2));
             rows.Add(Frame(name, groom, SolverPath.Reference, SequentialDispatcher.Instance, 1, refWarm, refFrames));
-            rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames));
-            if (name.StartsWith("reference", StringComparison.Ordinal))
+            bool reference = name.StartsWith("reference", StringComparison.Ordinal);
+            if (!reference) rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames));
+            else
             {
-                // Styled hair (the style command's cut, fitted fringe and baked rest pose) against the uncut groom, and the
-                // source's triples (the former default) on both, in the same run: the cost of styles and of holding them.
+                // Styled hair (the style command's cut, fitted fringe and baked rest pose) against the uncut groom, the
+                // source's triples (the former default) on both, the default with one substep per frame and the source's
+                // scheme alone (as a hand-vectorised native kernel runs it) with 4 and 1 substeps: the cost of styles, of
+                // holding them and of a frame's fixed work, timed side by side (interleaved) on 1 thread and on every thread.
+                // Guards off for one substep: with them on, gravity's limit per substep raises this scene to 2 at 60 Hz.
                 rows.Add(Frame(name, groom, SolverPath.Reference, SequentialDispatcher.Instance, 1, refWarm, refFrames, styled: true));
                 foreach (var (dispatcher, n) in threads > 1 ? new[] { ((IThreadDispatcher)SequentialDispatcher.Instance, 1), (parallel, threads) } : [(SequentialDispatcher.Instance, 1)])
-                {
-                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, styled: true));
-                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, bend: BendModel.SourceTriples));
-                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, bend: BendModel.SourceTriples, styled: true));
-                    // Per-frame costs: the default with one substep per frame, and the source's scheme alone (as a
-                    // hand-vectorised native kernel runs it) with 4 and 1 substeps.
-                    // Guards off: with them on, gravity's limit per substep raises this scene to 2 substeps at 60 Hz.
-                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, tune: OneSubstep) with { Scene = name + ", 1 substep" });
-                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, tune: SchemeOnly(4)) with { Scene = name + ", scheme only, 4 substeps" });
-                    rows.Add(Frame(name, groom, SolverPath.Fast, dispatcher, n, warmup, frames, tune: SchemeOnly(1)) with { Scene = name + ", scheme only, 1 substep" });
-                }
+                    rows.AddRange(Interleaved(
+                    [
+                        new(name, "fast", groom), new(name + ", styled", "fast", groom, Styled: true),
+                        new(name, "fast, source's triples", groom, BendModel.SourceTriples),
+                        new(name + ", styled", "fast, source's triples", groom, BendModel.SourceTriples, Styled: true),
+                        new(name + ", 1 substep", "fast", groom, Tune: OneSubstep),
+                        new(name + ", scheme only, 4 substeps", "fast", groom, Tune: SchemeOnly(4)),
+                        new(name + ", scheme only, 1 substep", "fast", groom, Tune: SchemeOnly(1)),
+                    ], dispatcher, n, warmup, frames));
             }
             // The largest scene's multi-threaded row is the frame-budget target: timed in several rounds, since run time on
             // a shared machine drifts from second to second.
-            if (threads > 1) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames, rounds: groom.TotalParticles == maxParticles ? rounds : 1));
+            if (threads > 1 && !reference) rows.Add(Frame(name, groom, SolverPath.Fast, parallel, threads, warmup, frames, rounds: groom.TotalParticles == maxParticles ? rounds : 1));
             // Before/after in one run: the same fast path kept to its 8-lane (AVX) code, on the reference scene and the largest.
             if (FastPathInfo.Avx512 && (name.StartsWith("reference", StringComparison.Ordinal) || groom.TotalParticles == maxParticles))
             {
@@ -116,13 +118,16 @@ public static class BenchCommand
 
         // Particles per strand: the reference scene's strand count at other strand lengths, on every core, so the cost
         // per particle-step of each length can be set against the best one (the fast path should not be tuned to one length).
+        // Interleaved, so the ratios to the best length are taken in one window of time.
+        var byLength = new List<Contender>();
         foreach (int n in lengths)
         {
             var g = GroomSettings.Reference();
             g.ParticlesPerStrand = n;
             g.PinnedPerStrand = Math.Min(g.PinnedPerStrand, n - 1);
-            rows.Add(Frame(LengthScene(n), g, SolverPath.Fast, threads > 1 ? parallel : SequentialDispatcher.Instance, threads, warmup, frames));
+            byLength.Add(new(LengthScene(n), "fast", g));
         }
+        if (byLength.Count > 0) rows.AddRange(Interleaved(byLength, threads > 1 ? parallel : SequentialDispatcher.Instance, threads, warmup, frames));
 
         if (systems)
         {
@@ -334,7 +339,7 @@ public static class BenchCommand
         sb.AppendLine($"- Runtime: {RuntimeInformation.FrameworkDescription}, SIMD width {System.Numerics.Vector<float>.Count} floats (Vector<float>), hardware acceleration {System.Numerics.Vector.IsHardwareAccelerated}");
         sb.AppendLine($"- Date: {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC");
         sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Steps/frame: the substeps whole-frame rows actually stepped, on average (the stability guards add some where the head moves far against a segment's length: the 64-particle strands' 4 mm segments), and ms/step = ms/frame ÷ steps/frame. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ steps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn), timed in the same simulation as chunks on, alternating blocks of 10 frames: before/after in one run.");
-        sb.AppendLine("- Rows \"…, styled\": the reference scene styled as the style command does (1 s settle, rest pose baked, chin-height cut through every layer, a curl fitted to the 1,035-strand fringe), timed from there. Rows \"fast, source's triples\": the same hair with the source's triple shape matching and a separate follow-the-leader pass (BendModel.SourceTriples, the default before the rest-shape model), in the same run.");
+        sb.AppendLine("- Rows \"…, styled\": the reference scene styled as the style command does (1 s settle, rest pose baked, chin-height cut through every layer, a curl fitted to the 1,035-strand fringe), timed from there. Rows \"fast, source's triples\": the same hair with the source's triple shape matching and a separate follow-the-leader pass (BendModel.SourceTriples, the default before the rest-shape model). Interleaved: the reference scene's fast rows on each thread count (default, styled, source's triples uncut and styled, one substep, the source's scheme alone with 4 and 1 substeps) are stepped in turn, 10 frames each, in one process, and so are the rows of the particles-per-strand series; their ratios are taken in one window of time.");
         sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world; ShapeMatch and Length on the source's scheme, whose systems they are), each frame starting from the same warm state (1 s of shaking), on the reference scene. Interpolate is the render interpolation, once per frame (the scene gets default render settings: one render strand between neighbours, 549,840 render points); the whole-frame rows have no render strands (docs/leave-out.md times frames with them).");
         sb.AppendLine("- All rows come from one run on a shared machine (other builds may run at the same time): compare rows within the table, and rerun for absolute numbers.");
         sb.AppendLine();
