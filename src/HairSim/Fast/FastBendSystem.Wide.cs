@@ -51,9 +51,10 @@ public sealed partial class FastBendSystem
         }
         for (int k = 1; k < rows; k++)
         {
-            Prefetcher.Row(p.Prefetch);
             for (int h = 0; h < lanes; h += width)
             {
+                // A share of the next chunk's prefetch per half row: small enough not to fill the core's miss buffers.
+                Prefetcher.Row(p.Prefetch);
                 int r = k * lanes + h;
                 var px = Ld16(ref d, p.Ox + r - lanes); var py = Ld16(ref d, p.Oy + r - lanes); var pz = Ld16(ref d, p.Oz + r - lanes);
                 var x = Ld16(ref d, p.Ox + r); var y = Ld16(ref d, p.Oy + r); var z = Ld16(ref d, p.Oz + r);

@@ -59,9 +59,13 @@ internal readonly ref struct StrandChunk
         Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height; FirstStrand = firstStrand; Prefetch = prefetch;
     }
 
+    /// <summary>Calls of <see cref="PrefetchRow"/> a row-sweeping system makes per row: one per 16-lane half.</summary>
+    public const int RowPrefetchCalls = 2;
+
     /// <summary>
     /// For a system that sweeps the chunk row by row (<see cref="IStrandChunkSystem.SweepsRows"/>): fetches one row's
-    /// share of the next chunk's data, so the fetch is spread over the whole chunk's work in small steps.
+    /// share of the next chunk's data (called <see cref="RowPrefetchCalls"/> times per row), so the fetch is spread over
+    /// the whole chunk's work in small steps.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public void PrefetchRow() => Prefetcher.Row(Prefetch);
@@ -123,11 +127,11 @@ internal interface IStrandChunkSystem
     /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
     void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
     /// <summary>
-    /// Whether, this frame, <see cref="RunChunk"/> calls <see cref="StrandChunk.PrefetchRow"/> once for each row it
-    /// sweeps (rows 1 … height − 1, every substep): the runner then leaves the next chunk's prefetch to those calls
-    /// instead of issuing it in slices after each system. Small steps spread over the rows measured 9–13 % faster
-    /// frames on one thread than a slice after each system (a burst of a hundred prefetches fills the core's miss
-    /// buffers and stalls it).
+    /// Whether, this frame, <see cref="RunChunk"/> calls <see cref="StrandChunk.PrefetchRow"/> (or Prefetcher.Row)
+    /// <see cref="StrandChunk.RowPrefetchCalls"/> times for each row it sweeps (rows 1 … height − 1, every substep): the
+    /// runner then leaves the next chunk's prefetch to those calls instead of issuing it in slices after each system.
+    /// Small steps spread over the rows measured 5–13 % faster frames than a slice after each system (a burst of a
+    /// hundred prefetches fills the core's miss buffers and stalls it), and a step per half row 2–5 % faster again.
     /// </summary>
     bool SweepsRows => false;
     /// <summary>
@@ -283,7 +287,7 @@ internal sealed class StrandChunkRunner
         // The next chunk's data is fetched from memory while this one computes: a share per row of a system that
         // sweeps rows, else a slice after each system.
         var prefetch = new Prefetcher(w, s0 + StrandChunk.Lanes, first + StrandChunk.Lanes * height, height, _needs, _chunkSystems);
-        int calls = ctx.Substeps * (_rowPaced ? Math.Max(1, height - 1) : _chunkSystems.Length);
+        int calls = ctx.Substeps * (_rowPaced ? Math.Max(1, height - 1) * StrandChunk.RowPrefetchCalls : _chunkSystems.Length);
         prefetch.PerCall = (prefetch.Lines + calls - 1) / calls;
         var chunk = new StrandChunk(tile, firsts, pinned, height, s0, _rowPaced ? (nint)(&prefetch) : 0);
         foreach (var c in _chunkSystems) c.PrepareChunk(w, s0, chunk);
