@@ -39,9 +39,31 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
     /// <summary>Per strand: the first strand of the chunk whose block holds its current rest data, or −1.</summary>
     private readonly int[] _chunkBlock;
 
+    // Per chunk (keyed by its first strand): the edit stamp, settings and cache generation under which its 32 strands
+    // were last checked and laid out. While they all hold (and no other chunk took over its strands' blocks), the
+    // chunk needs no per-strand check: a frame's chunks then cost one comparison each instead of 32 cache checks.
+    private readonly long[] _checkedGeneration, _checkedStamp;
+    private readonly float[] _checkedSag, _checkedH, _checkedZeta;
+    /// <summary>Bumped whenever a strand's cached rest data or shares change (FillCache, CacheShares).</summary>
+    private long _cacheGeneration;
+
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
     {
         if (!_chunkActive) return;
+        long stamp = w.EditStamp + 1L;
+        if (_checkedGeneration[s0] == Volatile.Read(ref _cacheGeneration) + 1 && _checkedStamp[s0] == stamp && _checkedSag[s0] == _chunkSag
+            && _checkedH[s0] == _chunkH && _checkedZeta[s0] == _chunkZeta && OwnsBlock(s0)) return;
+        PrepareStrands(w, s0, chunk);
+        // Read after the strands' own updates: a bump by another thread meanwhile was for strands of another chunk.
+        _checkedGeneration[s0] = Volatile.Read(ref _cacheGeneration) + 1;
+        _checkedStamp[s0] = stamp; _checkedSag[s0] = _chunkSag; _checkedH[s0] = _chunkH; _checkedZeta[s0] = _chunkZeta;
+    }
+
+    /// <summary>Whether the chunk from s0 owns its strands' blocks (its ends suffice: see FastHeadFollowSystem.OwnsBlock).</summary>
+    private bool OwnsBlock(int s0) => _chunkBlock[s0] == s0 && _chunkBlock[s0 + StrandChunk.Lanes - 1] == s0;
+
+    private void PrepareStrands(HairWorld w, int s0, scoped StrandChunk chunk)
+    {
         bool laidOut = true;
         for (int s = s0; s < s0 + StrandChunk.Lanes; s++)
         {

@@ -53,6 +53,9 @@ public sealed partial class FastBendSystem : IHairSystem
         _chunkBend = new float[ChunkBendFields * n];
         _chunkBlock = new int[world.StrandCount];
         Array.Fill(_chunkBlock, -1);
+        int strands = world.StrandCount;
+        _checkedGeneration = new long[strands]; _checkedStamp = new long[strands];
+        _checkedSag = new float[strands]; _checkedH = new float[strands]; _checkedZeta = new float[strands];
     }
 
     /// <summary>Whether this instance sweeps 16-lane vectors.</summary>
@@ -82,6 +85,7 @@ public sealed partial class FastBendSystem : IHairSystem
         }
         _sharesH[s] = h; _sharesZeta[s] = zeta;
         _chunkBlock[s] = -1;
+        Interlocked.Increment(ref _cacheGeneration);
     }
 
     private void FillCache(HairWorld w, int s, float sag)
@@ -100,6 +104,7 @@ public sealed partial class FastBendSystem : IHairSystem
         }
         _profileAt[s] = w.EditStamp + 1L; _profileSag[s] = sag;
         _chunkBlock[s] = -1;
+        Interlocked.Increment(ref _cacheGeneration);
     }
 
     // The stack tile is fully written before it is read (uniform groups by the transposes, others cleared first).

@@ -106,13 +106,12 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         for (int s = s0; s < s0 + StrandChunk.Lanes; s++) _pinRowsOwner[s] = s0;
     }
 
-    private bool OwnsBlock(int s0)
-    {
-        for (int s = s0; s < s0 + StrandChunk.Lanes; s++) if (_pinRowsOwner[s] != s0) return false;
-        return true;
-    }
+    /// <summary>
+    /// Whether the chunk from s0 still owns its strands' rows. Only its first and last strands are looked at: owners
+    /// are written for whole chunks of 32 strands, and any other chunk overlapping this one covers one of its ends.
+    /// </summary>
+    private bool OwnsBlock(int s0) => _pinRowsOwner[s0] == s0 && _pinRowsOwner[s0 + StrandChunk.Lanes - 1] == s0;
 
-    /// <summary>The chunk's pinned rest rows to (or from) its block of <see cref="_pinRows"/>.</summary>
     /// <summary>
     /// The next chunk's cached pinned rows (a few scattered lines per chunk, which the hardware prefetcher does not
     /// foresee), fetched while this chunk computes.
@@ -135,6 +134,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
             }
     }
 
+    /// <summary>The chunk's pinned rest rows to (or from) its block of <see cref="_pinRows"/>.</summary>
     private void CopyPinRows(scoped StrandChunk chunk, bool fromBlock)
     {
         const int L = StrandChunk.Lanes;

@@ -58,6 +58,37 @@ public class StrandChunkTests(ITestOutputHelper output)
     }
 
     [Fact]
+    public void ChunksFollowSettingChangesAndBackAsTheSystemBySystemPathDoes()
+    {
+        // The bend sweep's chunks skip their per-strand cache checks while the settings, the edit stamp and every
+        // strand's cache are as they were when the chunk was last checked. A change and a change back (substeps, so h;
+        // Sag; damping), also one made while the chunks were off, must still reach every strand.
+        var chunked = FastPathScenes.Build("rest", SolverPath.Fast);
+        var plain = FastPathScenes.Build("rest", SolverPath.Fast);
+        var simC = new HairSimulation(chunked);
+        var simP = new HairSimulation(plain);
+        simP.Pipeline.UseStrandChunks = false;
+        int stepped = 0;
+        for (int f = 1; f <= 36; f++)
+        {
+            // Frame 30: the chunked simulation steps system by system (as a frame handed back does) with other substeps,
+            // so the strands' caches change behind the chunks' backs; frame 31 goes back to chunks and to 4 substeps.
+            simC.Pipeline.UseStrandChunks = f != 30;
+            foreach (var st in new[] { chunked.Settings, plain.Settings })
+            {
+                st.Substeps = f is >= 6 and < 12 ? 5 : f == 30 ? 6 : 4;
+                st.Sag = f is >= 16 and < 20 ? 0.05f : 0.01f;
+                st.BendDamping = f is >= 24 and < 28 ? 2f * new SimulationSettings().BendDamping + 0.1f : new SimulationSettings().BendDamping;
+            }
+            simC.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simP.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            stepped += simC.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(chunked.World.BitEquals(plain.World), $"the paths differ after frame {f}");
+        }
+        if (ChunksExpected) Assert.True(stepped > 0);
+    }
+
+    [Fact]
     public void ChunkWithCoincidingParticlesGoesBackToThePerStrandPathWithTheSameBits()
     {
         var chunked = FastPathScenes.Build("straight", SolverPath.Fast);
