@@ -58,17 +58,7 @@ internal static partial class Transpose
         v[h] = Vector512<float>.Zero;
         int pairs = (h + 1) / 2;
         for (int k = 0; k < h; k++)
-        {
-            int slot = Slot(h, k, 0) * 16;
-            var row = Avx512F.PermuteVar16x32x2(v[0], Vector512.LoadUnsafe(ref ShortTables.LoadIndex[slot]), v[1]);
-            for (int p = 1; p < pairs; p++)
-            {
-                slot += 16;
-                var part = Avx512F.PermuteVar16x32x2(v[2 * p], Vector512.LoadUnsafe(ref ShortTables.LoadIndex[slot]), v[2 * p + 1]);
-                row = Vector512.ConditionalSelect(Vector512.LoadUnsafe(ref ShortTables.LoadMask[slot]), part, row);
-            }
-            St16(ref tile, k * lanes, row);
-        }
+            St16(ref tile, k * lanes, Pick(in v, pairs, Slot(h, k, 0) * 16, ShortTables.LoadIndex, ShortTables.LoadMask));
     }
 
     /// <summary>The inverse of <see cref="InShort"/>: rows 0 … h − 1 of 16 tile columns back into 16·h consecutive floats.</summary>
@@ -80,17 +70,21 @@ internal static partial class Transpose
         v[h] = Vector512<float>.Zero;
         int pairs = (h + 1) / 2;
         for (int j = 0; j < h; j++)
+            St16(ref strands, 16 * j, Pick(in v, pairs, Slot(h, j, 0) * 16, ShortTables.StoreIndex, ShortTables.StoreMask));
+    }
+
+    /// <summary>One vector picked out of the sources, pair by pair, with the indices and lanes of the slots from <paramref name="slot"/>.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector512<float> Pick(in Sources v, int pairs, int slot, int[] index, float[] mask)
+    {
+        var picked = Avx512F.PermuteVar16x32x2(v[0], Vector512.LoadUnsafe(ref index[slot]), v[1]);
+        for (int p = 1; p < pairs; p++)
         {
-            int slot = Slot(h, j, 0) * 16;
-            var outv = Avx512F.PermuteVar16x32x2(v[0], Vector512.LoadUnsafe(ref ShortTables.StoreIndex[slot]), v[1]);
-            for (int p = 1; p < pairs; p++)
-            {
-                slot += 16;
-                var part = Avx512F.PermuteVar16x32x2(v[2 * p], Vector512.LoadUnsafe(ref ShortTables.StoreIndex[slot]), v[2 * p + 1]);
-                outv = Vector512.ConditionalSelect(Vector512.LoadUnsafe(ref ShortTables.StoreMask[slot]), part, outv);
-            }
-            St16(ref strands, 16 * j, outv);
+            slot += 16;
+            var part = Avx512F.PermuteVar16x32x2(v[2 * p], Vector512.LoadUnsafe(ref index[slot]), v[2 * p + 1]);
+            picked = Vector512.ConditionalSelect(Vector512.LoadUnsafe(ref mask[slot]), part, picked);
         }
+        return picked;
     }
 
     /// <summary>Up to MaxShort source vectors and a zero one past the last (the odd height's second source).</summary>
