@@ -407,7 +407,8 @@ internal sealed class StrandChunkRunner
 
     /// <summary>
     /// 32 strands of <paramref name="height"/> particles from <paramref name="first"/> of a per-particle array into
-    /// chunk rows from <paramref name="row0"/>. 16 particles: two 16 × 16 transposes. Other capacities: 16 × 16
+    /// chunk rows from <paramref name="row0"/>. 16 particles: two 16 × 16 transposes. 2 … 4 particles: the short
+    /// transposes (Transpose.InShort), which fill only the strands' own rows. Other capacities: 16 × 16
     /// transposes with the strands' stride, one block of 16 rows at a time, where 16 floats past the last strand's
     /// last block are readable (rows past the capacity then hold the next strands' particles, which the chunk masks);
     /// else element by element, with the rows past the capacity cleared.
