@@ -188,6 +188,8 @@ internal sealed class StrandChunkRunner
     private int _stepped, _handedBack;
     // This frame: a system paces the next chunk's prefetch row by row (IStrandChunkSystem.SweepsRows).
     private bool _rowPaced;
+    // Per chunk start: 2 × (edit stamp + 1) + the frame's cut flag under which the 32 strands from it last made a chunk.
+    private long[] _acceptedAt = [];
 
     public void ResetCounts() { _stepped = 0; _handedBack = 0; }
 
@@ -195,8 +197,10 @@ internal sealed class StrandChunkRunner
     public (int Stepped, int HandedBack) Counts => (Volatile.Read(ref _stepped), Volatile.Read(ref _handedBack));
 
     /// <summary>Prepares every system's chunk kernel for this frame; false if some system's settings do not take it.</summary>
-    public bool BeginFrame(FrameContext ctx)
+    public bool BeginFrame(FrameContext ctx, int strandCount)
     {
+        // Made on the calling thread (the jobs only read and write their own entries), once per world size.
+        if (_acceptedAt.Length != strandCount) _acceptedAt = new long[strandCount];
         // A teleport carries the particles past a cut with the head (FastHeadFollowSystem.CarryRigidly), which a
         // chunk, putting them back as they were, would not: cut strands take the ordinary path on those rare frames.
         _cutThisFrame = _takesCut && !ctx.Teleported;
@@ -248,6 +252,9 @@ internal sealed class StrandChunkRunner
     /// </summary>
     private int Refused(HairWorld w, int s0, int tileRows)
     {
+        // Whether strands make a chunk changes only with an edit (capacities, cuts, pins, rest shapes) or a teleport.
+        long key = 2L * (w.EditStamp + 1L) + (_cutThisFrame ? 1 : 0);
+        if (s0 < _acceptedAt.Length && _acceptedAt[s0] == key) return s0;
         int first = w.StrandFirst[s0], cap = w.StrandCapacity[s0];
         for (int l = 0; l < StrandChunk.Lanes; l++)
         {
@@ -265,6 +272,7 @@ internal sealed class StrandChunkRunner
             int l = c.RefusedLane(w, s0);
             if (l >= 0) return s0 + l + 1;
         }
+        if (s0 < _acceptedAt.Length) _acceptedAt[s0] = key;
         return s0;
     }
 

@@ -89,6 +89,36 @@ public class StrandChunkTests(ITestOutputHelper output)
     }
 
     [Fact]
+    public void AnEditBetweenFramesReachesTheChunksItTurnsAway()
+    {
+        // Which runs of strands make chunks is remembered per chunk until the next edit: strands an edit sets free (no
+        // pin left: they leave the chunk path) must leave it at once, as on the system-by-system path.
+        var chunked = FastPathScenes.Build("rest", SolverPath.Fast);
+        var plain = FastPathScenes.Build("rest", SolverPath.Fast);
+        var simC = new HairSimulation(chunked);
+        var simP = new HairSimulation(plain);
+        simP.Pipeline.UseStrandChunks = false;
+        int before = 0, after = 0;
+        for (int f = 1; f <= 16; f++)
+        {
+            if (f == 8)
+                foreach (var w in new[] { chunked.World, plain.World })
+                {
+                    // Strands 40 and 100 lose their pins: the 144 strands then hold 3 runs of 32 without them, not 4.
+                    foreach (int s in new[] { 40, 100 })
+                        for (int i = w.StrandFirst[s]; i < w.StrandFirst[s] + w.StrandParticleCount[s]; i++) w.InvMass[i] = 1f;
+                    w.MarkEdited();
+                }
+            simC.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simP.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            if (f == 7) before = simC.Pipeline.LastFrameChunks.Stepped;
+            if (f == 8) after = simC.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(chunked.World.BitEquals(plain.World), $"the paths differ after frame {f}");
+        }
+        if (ChunksExpected) Assert.True(after < before, $"{before} chunks before the edit, {after} after");
+    }
+
+    [Fact]
     public void ChunkWithCoincidingParticlesGoesBackToThePerStrandPathWithTheSameBits()
     {
         var chunked = FastPathScenes.Build("straight", SolverPath.Fast);
