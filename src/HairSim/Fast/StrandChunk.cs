@@ -393,10 +393,12 @@ internal sealed class StrandChunkRunner
 
     private static void ClearFixedRows(scoped StrandScratch tile, int tileRows, int height)
     {
-        // Short strands' loads fill only their own rows: the rows past them start at zero (the stack tile is not
-        // cleared), so every row a system reads holds a finite value (later chunks leave their own finite values there).
+        // Short strands' loads fill only their own rows: the rows past them in the loaded fields start at zero (the
+        // stack tile is not cleared), so they hold finite values, as the 16 × 16 transposes leave them (later chunks
+        // leave their own finite values there). Systems read only a chunk's own rows; this keeps stray reads harmless.
         if (height <= Transpose.MaxShort && Transpose.ShortAvailable)
-            for (int f = 0; f < StrandChunk.FieldCount; f++)
+            foreach (int f in (ReadOnlySpan<int>)[StrandChunk.X, StrandChunk.Y, StrandChunk.Z, StrandChunk.VelX, StrandChunk.VelY, StrandChunk.VelZ,
+                StrandChunk.InvMass, StrandChunk.RestLength, StrandChunk.ShapePrev, StrandChunk.ShapeMid, StrandChunk.ShapeNext])
                 tile.Data.Slice(tile.Offset(f) + height * StrandChunk.Lanes, (tileRows - height) * StrandChunk.Lanes).Clear();
         // Goal rows −1, 0, 15 and 16: no triple fills them (triples are 1 … 14).
         for (int g = 0; g < 9; g++)
