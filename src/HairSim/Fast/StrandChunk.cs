@@ -130,8 +130,8 @@ internal interface IStrandChunkSystem
     /// Whether, this frame, <see cref="RunChunk"/> calls <see cref="StrandChunk.PrefetchRow"/> (or Prefetcher.Row)
     /// <see cref="StrandChunk.RowPrefetchCalls"/> times for each row it sweeps (rows 1 … height − 1, every substep): the
     /// runner then leaves the next chunk's prefetch to those calls instead of issuing it in slices after each system.
-    /// Small steps spread over the rows measured 5–13 % faster frames than a slice after each system (a burst of a
-    /// hundred prefetches fills the core's miss buffers and stalls it), and a step per half row 2–5 % faster again.
+    /// Small steps spread over the rows made frames faster than a slice after each system (a burst of a hundred
+    /// prefetches fills the core's miss buffers and stalls it), and a step per half row faster again.
     /// </summary>
     bool SweepsRows => false;
     /// <summary>
@@ -517,8 +517,8 @@ internal sealed class StrandChunkRunner
 
 /// <summary>
 /// Software prefetch of the next chunk's fields (and the blocks systems read in place, such as the bend sweep's rest
-/// directions) into L1, spread over the current chunk's work: into L1 rather than L2 measured 2–8 % faster frames
-/// (the lines come late enough in the chunk to stay there until its loads). The hardware
+/// directions) into L1, spread over the current chunk's work: into L1 rather than L2 made frames faster (the lines
+/// come late enough in the chunk to stay there until its loads). The hardware
 /// prefetcher alone leaves the chunk loads waiting on memory: each field is a separate 2 KB stream touched once per
 /// chunk, with microseconds of compute in between, so it never runs far enough ahead. Addresses are taken once per
 /// chunk; a prefetch is only a hint, so one into an array the GC has since moved costs nothing but the miss.

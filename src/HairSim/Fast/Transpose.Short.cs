@@ -9,8 +9,8 @@ namespace HairSim.Fast;
 /// consecutive floats, h vectors, and row k (particle k of each) is picked out of them with two-source permutes
 /// (lane l takes float l·h + k), about h² operations for h rows instead of a full 16 × 16 transpose of 16 rows of
 /// which h are used. Stores go the other way and write the 16·h floats exactly, with no spill into the next strands.
-/// Timed against the 16 × 16 transposes in one process: 3- and 4-particle frames 11–14 % faster; at 6 and 8 particles
-/// 10–17 % slower (more permutes, and tables for those heights that crowd L1), hence the limit of 4.
+/// Timed against the 16 × 16 transposes in one process: 3- and 4-particle frames faster; at 6 and 8 particles slower
+/// (more permutes, and tables for those heights that crowd L1), hence the limit of 4.
 /// </summary>
 internal static partial class Transpose
 {
