@@ -10,7 +10,7 @@ public static partial class BenchCommand
         bool Styled = false, Action<SimulationSettings>? Tune = null);
 
     /// <summary>
-    /// Whole frames of several scenes stepped in turn, blocks of 10 frames each, in one process: the rows whose ratios
+    /// Whole frames of several scenes stepped in turn, in blocks of about equal time, in one process: the rows whose ratios
     /// are targets (the default model against the former default, styled against uncut, one substep against four, each
     /// strand length against the best) are timed side by side, so a slow spell of a shared machine falls on all of them
     /// alike instead of on whichever row happened to run then.
@@ -30,24 +30,34 @@ public static partial class BenchCommand
         float dt = 1f / 60f;
         var f = new int[n];
         void Step(int k) { f[k]++; sims[k].Step(dt, HairSim.Measurement.HeadMotion.Shake(f[k] * dt)); }
-        // At least `warmup` frames each and 1.5 s in all, so the JIT's optimised tier is what gets timed.
+        // At least `warmup` frames each and 1.5 s in all, so the JIT's optimised tier is what gets timed; the last
+        // warm-up frame of each scene sizes its blocks.
         var warm = Stopwatch.StartNew();
+        var sw = new Stopwatch();
+        var warmMs = new double[n];
         for (int i = 0; i < warmup || warm.Elapsed.TotalSeconds < 1.5; i++)
-            for (int k = 0; k < n; k++) Step(k);
+            for (int k = 0; k < n; k++) { sw.Restart(); Step(k); warmMs[k] = sw.Elapsed.TotalMilliseconds; }
+        // Blocks of about equal time: 10 frames of the slowest scene, more of a faster one (up to 8 times as many), so a
+        // short frame is not timed in a window a fraction as long as its neighbours' (one slow spell would decide it).
         const int Block = 10;
         int blocks = Math.Max(1, (frames + Block - 1) / Block);
+        double slowest = warmMs.Max();
+        var blockFrames = new int[n];
         var times = new double[n][];
         var substeps = new long[n];
-        for (int k = 0; k < n; k++) times[k] = new double[blocks * Block];
-        var sw = new Stopwatch();
+        for (int k = 0; k < n; k++)
+        {
+            blockFrames[k] = (int)Math.Clamp(Math.Round(Block * slowest / Math.Max(1e-3, warmMs[k])), Block, 8 * Block);
+            times[k] = new double[blocks * blockFrames[k]];
+        }
         long bytes = GC.GetTotalAllocatedBytes(true);
         for (int b = 0; b < blocks; b++)
             for (int k = 0; k < n; k++)
-                for (int i = 0; i < Block; i++)
+                for (int i = 0; i < blockFrames[k]; i++)
                 {
                     sw.Restart();
                     Step(k);
-                    times[k][b * Block + i] = sw.Elapsed.TotalMilliseconds;
+                    times[k][b * blockFrames[k] + i] = sw.Elapsed.TotalMilliseconds;
                     substeps[k] += sims[k].Pipeline.LastFrameSubsteps;
                 }
         bytes = GC.GetTotalAllocatedBytes(true) - bytes; // over the whole group: each row shows its share
