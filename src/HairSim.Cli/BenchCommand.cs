@@ -54,6 +54,9 @@ public static partial class BenchCommand
         var chunkPairs = new List<(Row On, Row Off)>();
         var total = Stopwatch.StartNew();
         using var parallel = new ParallelDispatcher(threads);
+        // After a pause: right at start-up the build that `dotnet run` just did, or the runtime's own start-up work, can
+        // still hold a core, and a check then reads about one core's work on two threads whatever the host does.
+        Thread.Sleep(3000);
         var checkBefore = MachineCheck.Measure(threads);
         Console.Error.WriteLine($"machine check before the rows: {MachineCheck.Describe(checkBefore)}");
 
