@@ -57,19 +57,37 @@ public class StrandChunkTests(ITestOutputHelper output)
         }
     }
 
+    /// <summary>
+    /// The "rest" scene stepped with chunks and system by system side by side for <paramref name="frames"/> frames,
+    /// <paramref name="before"/> changing both (chunked scene, plain scene, chunked simulation, frame) ahead of each
+    /// frame; asserts the same bits after every frame and returns the chunks stepped in each.
+    /// </summary>
+    private static int[] SideBySide(int frames, Action<HairScene, HairScene, HairSimulation, int> before)
+    {
+        var chunked = FastPathScenes.Build("rest", SolverPath.Fast);
+        var plain = FastPathScenes.Build("rest", SolverPath.Fast);
+        var simC = new HairSimulation(chunked);
+        var simP = new HairSimulation(plain);
+        simP.Pipeline.UseStrandChunks = false;
+        var stepped = new int[frames + 1];
+        for (int f = 1; f <= frames; f++)
+        {
+            before(chunked, plain, simC, f);
+            simC.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simP.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            stepped[f] = simC.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(chunked.World.BitEquals(plain.World), $"the paths differ after frame {f}");
+        }
+        return stepped;
+    }
+
     [Fact]
     public void ChunksFollowSettingChangesAndBackAsTheSystemBySystemPathDoes()
     {
         // The bend sweep's chunks skip their per-strand cache checks while the settings, the edit stamp and every
         // strand's cache are as they were when the chunk was last checked. A change and a change back (substeps, so h;
         // Sag; damping), also one made while the chunks were off, must still reach every strand.
-        var chunked = FastPathScenes.Build("rest", SolverPath.Fast);
-        var plain = FastPathScenes.Build("rest", SolverPath.Fast);
-        var simC = new HairSimulation(chunked);
-        var simP = new HairSimulation(plain);
-        simP.Pipeline.UseStrandChunks = false;
-        int stepped = 0;
-        for (int f = 1; f <= 36; f++)
+        var stepped = SideBySide(36, (chunked, plain, simC, f) =>
         {
             // Frame 30: the chunked simulation steps system by system (as a frame handed back does) with other substeps,
             // so the strands' caches change behind the chunks' backs; frame 31 goes back to chunks and to 4 substeps.
@@ -80,12 +98,8 @@ public class StrandChunkTests(ITestOutputHelper output)
                 st.Sag = f is >= 16 and < 20 ? 0.05f : 0.01f;
                 st.BendDamping = f is >= 24 and < 28 ? 2f * new SimulationSettings().BendDamping + 0.1f : new SimulationSettings().BendDamping;
             }
-            simC.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            simP.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            stepped += simC.Pipeline.LastFrameChunks.Stepped;
-            Assert.True(chunked.World.BitEquals(plain.World), $"the paths differ after frame {f}");
-        }
-        if (ChunksExpected) Assert.True(stepped > 0);
+        });
+        if (ChunksExpected) Assert.True(stepped.Sum() > 0);
     }
 
     [Fact]
@@ -93,29 +107,18 @@ public class StrandChunkTests(ITestOutputHelper output)
     {
         // Which runs of strands make chunks is remembered per chunk until the next edit: strands an edit sets free (no
         // pin left: they leave the chunk path) must leave it at once, as on the system-by-system path.
-        var chunked = FastPathScenes.Build("rest", SolverPath.Fast);
-        var plain = FastPathScenes.Build("rest", SolverPath.Fast);
-        var simC = new HairSimulation(chunked);
-        var simP = new HairSimulation(plain);
-        simP.Pipeline.UseStrandChunks = false;
-        int before = 0, after = 0;
-        for (int f = 1; f <= 16; f++)
+        var stepped = SideBySide(16, (chunked, plain, _, f) =>
         {
-            if (f == 8)
-                foreach (var w in new[] { chunked.World, plain.World })
-                {
-                    // Strands 40 and 100 lose their pins: the 144 strands then hold 3 runs of 32 without them, not 4.
-                    foreach (int s in new[] { 40, 100 })
-                        for (int i = w.StrandFirst[s]; i < w.StrandFirst[s] + w.StrandParticleCount[s]; i++) w.InvMass[i] = 1f;
-                    w.MarkEdited();
-                }
-            simC.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            simP.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            if (f == 7) before = simC.Pipeline.LastFrameChunks.Stepped;
-            if (f == 8) after = simC.Pipeline.LastFrameChunks.Stepped;
-            Assert.True(chunked.World.BitEquals(plain.World), $"the paths differ after frame {f}");
-        }
-        if (ChunksExpected) Assert.True(after < before, $"{before} chunks before the edit, {after} after");
+            if (f != 8) return;
+            foreach (var w in new[] { chunked.World, plain.World })
+            {
+                // Strands 40 and 100 lose their pins: the 144 strands then hold 3 runs of 32 without them, not 4.
+                foreach (int s in new[] { 40, 100 })
+                    for (int i = w.StrandFirst[s]; i < w.StrandFirst[s] + w.StrandParticleCount[s]; i++) w.InvMass[i] = 1f;
+                w.MarkEdited();
+            }
+        });
+        if (ChunksExpected) Assert.True(stepped[8] < stepped[7], $"{stepped[7]} chunks before the edit, {stepped[8]} after");
     }
 
     [Fact]
