@@ -179,12 +179,11 @@ public static partial class BenchCommand
     /// <summary>One substep per frame, really: the guards would raise it (gravity may move a particle 5 % of a segment per substep).</summary>
     private static void OneSubstep(SimulationSettings st) { st.Substeps = 1; st.Guards = false; }
 
-    /// <param name="bend">The bend model (the default's, or the source's triples: the former default, for before/after in one run).</param>
     /// <param name="styled">Style the scene first as the style command does (settle, bake the rest pose, chin-height cut, fitted fringe curl).</param>
     private static Row Frame(string name, GroomSettings groom, SolverPath path, IThreadDispatcher dispatcher, int threads, int warmup, int frames,
-        bool allowAvx512 = true, int rounds = 1, BendModel bend = BendModel.RestShape, bool styled = false, Action<SimulationSettings>? tune = null)
+        bool allowAvx512 = true, int rounds = 1, bool styled = false)
     {
-        var scene = Scene(groom, path, bend, tune);
+        var scene = Scene(groom, path);
         var sim = new HairSimulation(scene, PipelineBuilder.CreateDefault(allowAvx512), dispatcher);
         if (styled) new StyleCommand.Script(groom).StyleAll(sim);
         float dt = 1f / 60f;
@@ -217,7 +216,6 @@ public static partial class BenchCommand
         if (scene.World.CountNonFinite() != 0) throw new InvalidDataException($"{name} ({path}) produced non-finite values.");
         var row = Summarise(styled ? name + ", styled" : name, "frame", path, threads, scene, times, bytes, times.Length, (double)substeps / times.Length) with { RoundMedians = rounds > 1 ? roundMedians : [] };
         if (!allowAvx512) row = row with { Path = "fast, 8-lane" };
-        if (bend == BendModel.SourceTriples) row = row with { Path = row.Path + ", source's triples" };
         Console.Error.WriteLine($"{name,-22} {Label(row),-18} {row.MedianMs,9:F3} ms/frame");
         return row;
     }

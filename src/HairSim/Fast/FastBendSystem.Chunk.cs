@@ -14,7 +14,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
     bool IStrandChunkSystem.SupportsChunks => UsesWide;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
     bool IStrandChunkSystem.TakesCutStrands => true;
-    /// <summary>The sweep fetches a share of the next chunk's data per row (<see cref="StrandChunk.PrefetchRow"/>).</summary>
+    /// <summary>The sweep fetches a share of the next chunk's data per half row (<see cref="Prefetcher.Row"/>).</summary>
     bool IStrandChunkSystem.SweepsRows => _chunkActive;
 
     // This frame's settings, for PrepareChunk (which gets no context).
@@ -52,15 +52,12 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         if (!_chunkActive) return;
         long stamp = w.EditStamp + 1L;
         if (_checkedGeneration[s0] == Volatile.Read(ref _cacheGeneration) + 1 && _checkedStamp[s0] == stamp && _checkedSag[s0] == _chunkSag
-            && _checkedH[s0] == _chunkH && _checkedZeta[s0] == _chunkZeta && OwnsBlock(s0)) return;
+            && _checkedH[s0] == _chunkH && _checkedZeta[s0] == _chunkZeta && StrandChunk.OwnsBlock(_chunkBlock, s0)) return;
         PrepareStrands(w, s0, chunk);
         // Read after the strands' own updates: a bump by another thread meanwhile was for strands of another chunk.
         _checkedGeneration[s0] = Volatile.Read(ref _cacheGeneration) + 1;
         _checkedStamp[s0] = stamp; _checkedSag[s0] = _chunkSag; _checkedH[s0] = _chunkH; _checkedZeta[s0] = _chunkZeta;
     }
-
-    /// <summary>Whether the chunk from s0 owns its strands' blocks (its ends suffice: see FastHeadFollowSystem.OwnsBlock).</summary>
-    private bool OwnsBlock(int s0) => _chunkBlock[s0] == s0 && _chunkBlock[s0 + StrandChunk.Lanes - 1] == s0;
 
     private void PrepareStrands(HairWorld w, int s0, scoped StrandChunk chunk)
     {

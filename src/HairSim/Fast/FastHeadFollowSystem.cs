@@ -95,7 +95,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         bool rowsCached = _cache && _cachedAt.Length == w.StrandCount && _pinRows.Length == 3 * w.ParticleCount;
         long at = w.EditStamp + 1L;
         if (rowsCached) PrefetchPinRows(w, s0 + StrandChunk.Lanes);
-        if (rowsCached && _pinRowsAt[s0] == at && _pinRowsMask[s0] == chunk.PinnedRows && OwnsBlock(s0))
+        if (rowsCached && _pinRowsAt[s0] == at && _pinRowsMask[s0] == chunk.PinnedRows && StrandChunk.OwnsBlock(_pinRowsOwner, s0))
         {
             CopyPinRows(chunk, fromBlock: true);
             return;
@@ -106,12 +106,6 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         _pinRowsAt[s0] = at; _pinRowsMask[s0] = chunk.PinnedRows;
         for (int s = s0; s < s0 + StrandChunk.Lanes; s++) _pinRowsOwner[s] = s0;
     }
-
-    /// <summary>
-    /// Whether the chunk from s0 still owns its strands' rows. Only its first and last strands are looked at: owners
-    /// are written for whole chunks of 32 strands, and any other chunk overlapping this one covers one of its ends.
-    /// </summary>
-    private bool OwnsBlock(int s0) => _pinRowsOwner[s0] == s0 && _pinRowsOwner[s0 + StrandChunk.Lanes - 1] == s0;
 
     /// <summary>
     /// The next chunk's cached pinned rows (a few scattered lines per chunk, which the hardware prefetcher does not

@@ -51,7 +51,7 @@ internal readonly ref struct StrandChunk
     /// <summary>The world index of the strand in lane 0 (lane l holds strand FirstStrand + l).</summary>
     public readonly int FirstStrand;
 
-    /// <summary>The runner's prefetch of the next chunk (a <see cref="Prefetcher"/> on its stack), or 0: see <see cref="PrefetchRow"/>.</summary>
+    /// <summary>The runner's prefetch of the next chunk (a <see cref="Prefetcher"/> on its stack), or 0: see <see cref="Prefetcher.Row"/>.</summary>
     public readonly nint Prefetch;
 
     public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, ulong pinnedRows, int height = Rows, int firstStrand = 0, nint prefetch = 0)
@@ -59,16 +59,15 @@ internal readonly ref struct StrandChunk
         Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height; FirstStrand = firstStrand; Prefetch = prefetch;
     }
 
-    /// <summary>Calls of <see cref="PrefetchRow"/> a row-sweeping system makes per row: one per 16-lane half.</summary>
+    /// <summary>Calls of <see cref="Prefetcher.Row"/> a row-sweeping system makes per row: one per 16-lane half.</summary>
     public const int RowPrefetchCalls = 2;
 
     /// <summary>
-    /// For a system that sweeps the chunk row by row (<see cref="IStrandChunkSystem.SweepsRows"/>): fetches one row's
-    /// share of the next chunk's data (called <see cref="RowPrefetchCalls"/> times per row), so the fetch is spread over
-    /// the whole chunk's work in small steps.
+    /// Whether the chunk from s0 still owns the per-chunk block its 32 strands' entries in <paramref name="owner"/> point
+    /// to. Only its first and last strands are looked at: owners are written for whole chunks of 32 strands, and any
+    /// other chunk overlapping this one covers one of its ends.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public void PrefetchRow() => Prefetcher.Row(Prefetch);
+    public static bool OwnsBlock(int[] owner, int s0) => owner[s0] == s0 && owner[s0 + Lanes - 1] == s0;
 
     /// <summary>Row <paramref name="row"/> of a particle field.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -127,7 +126,7 @@ internal interface IStrandChunkSystem
     /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
     void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
     /// <summary>
-    /// Whether, this frame, <see cref="RunChunk"/> calls <see cref="StrandChunk.PrefetchRow"/> (or Prefetcher.Row)
+    /// Whether, this frame, <see cref="RunChunk"/> calls <see cref="Prefetcher.Row"/> with <see cref="StrandChunk.Prefetch"/>
     /// <see cref="StrandChunk.RowPrefetchCalls"/> times for each row it sweeps (rows 1 … height − 1, every substep): the
     /// runner then leaves the next chunk's prefetch to those calls instead of issuing it in slices after each system.
     /// Small steps spread over the rows made frames faster than a slice after each system (a burst of a hundred
