@@ -162,18 +162,18 @@ public static class ReportCommand
                 double shaken = Thickness();
                 md.Append(F($"| {bend} | {(volume ? "on" : "off")} | {grown * 1000:F1} | {settled * 1000:F1} ({settled / grown * 100:F0} %) | {shaken * 1000:F1} ({shaken / grown * 100:F0} %) |\n"));
             }
-        md.Append("\nTwo crossing sheets (`CrossingSheets`: 20 + 20 limp strands of 16 particles; sheet B falls from 12 % of the strand length onto sheet A lying on a floor, 3 natural seconds, Froude-scaled): wherever a strand of B crosses a strand of A seen from above (about 400 places as dropped), whether B ended at or below A (passed into or through A's layer), and B's mean height above A as a share of the strand length. Volume with the defaults (a pass every `MaxStep` = 1/8 natural time, shorter passes while the push is stiff, down to 1/32) and with `MaxStep` = 1/32 (every pass 1/32 natural time: 5 ms for 25 cm hair). Passes per frame: the parts the pipeline stepped, on average over the run. Fast path.\n\n");
-        md.Append("| strand length | frame rate | no volume: B at or below A | defaults: B at or below A | defaults: mean gap | defaults: passes per frame | MaxStep 1/32: B at or below A | MaxStep 1/32: mean gap | MaxStep 1/32: passes per frame |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        md.Append("\nTwo crossing sheets (`CrossingSheets`: 20 + 20 limp strands of 16 particles; sheet B falls from 12 % of the strand length onto sheet A lying on a floor, 3 natural seconds, Froude-scaled): wherever a strand of B crosses a strand of A seen from above (about 400 places as dropped), whether B ended at or below A (passed through A's layer), whether it ended in A's layer (at or below A or less than 1 % of the length above it: strands have no thickness here, so where a B strand lies in A's plane the strict count flips on float-level differences), and B's mean height above A as a share of the strand length. Volume with the defaults (a pass every `MaxStep` = 1/8 natural time, shorter passes while the push is stiff, down to 1/32) and with `MaxStep` = 1/32 (every pass 1/32 natural time: 5 ms for 25 cm hair). Passes per frame: the parts the pipeline stepped, on average over the run. Fast path.\n\n");
+        md.Append("| strand length | frame rate | no volume: B at or below A | no volume: B in A's layer | defaults: B at or below A | defaults: B in A's layer | defaults: mean gap | defaults: passes per frame | MaxStep 1/32: B at or below A | MaxStep 1/32: B in A's layer | MaxStep 1/32: mean gap | MaxStep 1/32: passes per frame |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
         foreach (float scale in new[] { 0.04f, 1f, 40f })
             foreach (int hz in new[] { 30, 60, 240 })
             {
                 var off = CrossingSheets.Run(null, SolverPath.Fast, hz, scale: scale, dispatcher: threads);
                 var on = CrossingSheets.Run(new VolumeSettings(), SolverPath.Fast, hz, scale: scale, dispatcher: threads);
                 var fine = CrossingSheets.Run(new VolumeSettings { MaxStep = 1f / 32 }, SolverPath.Fast, hz, scale: scale, dispatcher: threads);
-                md.Append(F($"| {0.25 * scale * 100:0.##} cm | {hz} Hz | {off.Sunk} of {off.Crossings} | {on.Sunk} of {on.Crossings} | {Gap(on)} | {on.PartsPerFrame:F2} | {fine.Sunk} of {fine.Crossings} | {Gap(fine)} | {fine.PartsPerFrame:F2} |\n"));
+                md.Append(F($"| {0.25 * scale * 100:0.##} cm | {hz} Hz | {off.Sunk} of {off.Crossings} | {off.InLayer} | {on.Sunk} of {on.Crossings} | {on.InLayer} | {Gap(on)} | {on.PartsPerFrame:F2} | {fine.Sunk} of {fine.Crossings} | {fine.InLayer} | {Gap(fine)} | {fine.PartsPerFrame:F2} |\n"));
             }
         var reference = CrossingSheets.Run(new VolumeSettings(), SolverPath.Reference, 60);
-        md.Append(F($"\nReference path (double precision), defaults, 25 cm at 60 Hz: B at or below A at {reference.Sunk} of {reference.Crossings}, mean gap {Gap(reference)}, {reference.PartsPerFrame:F2} passes per frame.\n"));
+        md.Append(F($"\nReference path (double precision), defaults, 25 cm at 60 Hz: B at or below A at {reference.Sunk} of {reference.Crossings}, in A's layer at {reference.InLayer}, mean gap {Gap(reference)}, {reference.PartsPerFrame:F2} passes per frame.\n"));
         // What the defaults cost in passes on the reference groom: the head shake that leave-out times.
         {
             var scene = GroomBuilder.BuildScene(GroomSettings.Reference(), new SimulationSettings());

@@ -3,11 +3,12 @@ using System.Numerics;
 namespace HairSim.Measurement;
 
 /// <summary>
-/// What <see cref="CrossingSheets.Run"/> found: crossings measured, how many of them the upper sheet ended below the
-/// lower, the mean gap (as a share of the strand length), non-finite values, and the parts (volume passes) per frame
-/// the pipeline stepped on average.
+/// What <see cref="CrossingSheets.Run"/> found: crossings measured, how many of them the upper sheet ended at or below
+/// the lower, how many it ended in the lower sheet's layer (at or below it, or less than
+/// <see cref="CrossingSheets.LayerShare"/> of the length above it), the mean gap (as a share of the strand length),
+/// non-finite values, and the parts (volume passes) per frame the pipeline stepped on average.
 /// </summary>
-public readonly record struct CrossingResult(int Crossings, int Sunk, double MeanGap, int NonFinite, double PartsPerFrame = 1)
+public readonly record struct CrossingResult(int Crossings, int Sunk, double MeanGap, int NonFinite, double PartsPerFrame = 1, int InLayer = 0)
 {
     public double SunkShare => Crossings > 0 ? (double)Sunk / Crossings : double.NaN;
 }
@@ -24,6 +25,13 @@ public readonly record struct CrossingResult(int Crossings, int Sunk, double Mea
 public static class CrossingSheets
 {
     public const int Strands = 20, Particles = 16;
+
+    /// <summary>
+    /// B less than this share of the strand length above A at a crossing counts as in A's layer: strands have no
+    /// thickness here, so "at or below" alone flips on float-level differences where B lies in A's plane (on the floor
+    /// beside A's strands); a B strand resting on A sits several per cent of the length above it (a volume cell).
+    /// </summary>
+    public const double LayerShare = 0.01;
 
     public static HairScene Scene(VolumeSettings? volume, SolverPath path, float drop = 0.12f, float scale = 1f)
     {
@@ -64,7 +72,7 @@ public static class CrossingSheets
     /// </summary>
     public static CrossingResult Measure(HairWorld w, float length)
     {
-        int crossings = 0, sunk = 0; double gaps = 0;
+        int crossings = 0, sunk = 0, inLayer = 0; double gaps = 0;
         for (int i = 0; i < Strands; i++)
         {
             var a = w.GetStrandPositions(i);
@@ -78,10 +86,11 @@ public static class CrossingSheets
                         double ya = a[p - 1].Y + s * (a[p].Y - a[p - 1].Y), yb = b[q - 1].Y + t * (b[q].Y - b[q - 1].Y);
                         crossings++; gaps += yb - ya;
                         if (yb <= ya) sunk++;
+                        if (yb - ya < LayerShare * length) inLayer++;
                     }
             }
         }
-        return new CrossingResult(crossings, sunk, crossings > 0 ? gaps / crossings / length : double.NaN, w.CountNonFinite());
+        return new CrossingResult(crossings, sunk, crossings > 0 ? gaps / crossings / length : double.NaN, w.CountNonFinite(), InLayer: inLayer);
     }
 
     // Whether segments p0p1 and q0q1 cross in the xz plane, and where along each (0 … 1).
