@@ -143,9 +143,7 @@ public sealed partial class FastBendSystem
                 Simd.St(ref s, Scz * lanes + h, Simd.NegMulAdd(along, dz, uz) * inv);
                 Simd.St(ref s, Sdx * lanes + h, dx); Simd.St(ref s, Sdy * lanes + h, dy); Simd.St(ref s, Sdz * lanes + h, dz);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
-                // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised: the
-                // next target is this row's rest-turned target t̃ = q r_{k+1} q* turned by f as f t̃ f*/|f|², which needs
-                // no square root (the root that scales f∘q to unit length is off the row-to-row chain).
+                // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised (below).
                 var byM = free & mOk;
                 var gx = Simd.Sel(byM, mx, dx); var gy = Simd.Sel(byM, my, dy); var gz = Simd.Sel(byM, mz, dz); var gl = Simd.Sel(byM, ml, one);
                 var dot = Simd.MulAdd(tz, gz, Simd.MulAdd(ty, gy, tx * gx));
@@ -154,24 +152,27 @@ public sealed partial class FastBendSystem
                 fx = Simd.Sel(flip, zero, fx); fy = Simd.Sel(flip, zero, fy); fz = Simd.Sel(flip, zero, fz); fw = Simd.Sel(flip, one, fw);
                 var invF2 = one / Simd.MulAdd(fw, fw, Simd.MulAdd(fz, fz, Simd.MulAdd(fy, fy, fx * fx)));
                 var qx = Simd.Ld(ref s, Sqx * lanes + h); var qy = Simd.Ld(ref s, Sqy * lanes + h); var qz = Simd.Ld(ref s, Sqz * lanes + h); var qw = Simd.Ld(ref s, Sqw * lanes + h);
+                // The frame so far, Q = f∘q, left unnormalised (|Q|² = |f|² as q is a unit quaternion): the next target,
+                // this row's next rest direction turned by Q, is r + (2/|Q|²)(Q_w (Q×r) + Q×(Q×r)) with 1/|f|² from above,
+                // so it waits for no square root; q for the next row is Q scaled to unit length, off that chain.
+                var fqx = Simd.NegMulAdd(fz, qy, Simd.MulAdd(fy, qz, Simd.MulAdd(fx, qw, fw * qx)));
+                var fqy = Simd.MulAdd(fz, qx, Simd.MulAdd(fy, qw, Simd.NegMulAdd(fx, qz, fw * qy)));
+                var fqz = Simd.MulAdd(fz, qw, Simd.NegMulAdd(fy, qx, Simd.MulAdd(fx, qy, fw * qz)));
+                var fqw = Simd.NegMulAdd(fz, qz, Simd.NegMulAdd(fy, qy, Simd.NegMulAdd(fx, qx, fw * qw)));
                 if (k + 1 < rows)
                 {
                     int rn = r + lanes;
-                    Turn(qx, qy, qz, qw, Simd.Ld(ref rest, p.Orx + rn), Simd.Ld(ref rest, p.Ory + rn), Simd.Ld(ref rest, p.Orz + rn), out var nx1, out var ny1, out var nz1);
-                    // f v f*/|f|² = v + (2/|f|²)(w (f×v) + f×(f×v)).
-                    var ex1 = Simd.MulSub(fy, nz1, fz * ny1); var ey1 = Simd.MulSub(fz, nx1, fx * nz1); var ez1 = Simd.MulSub(fx, ny1, fy * nx1);
-                    var gx1 = Simd.MulSub(fy, ez1, Simd.NegMulAdd(fw, ex1, fz * ey1)); var gy1 = Simd.MulSub(fz, ex1, Simd.NegMulAdd(fw, ey1, fx * ez1));
-                    var gz1 = Simd.MulSub(fx, ey1, Simd.NegMulAdd(fw, ez1, fy * ex1));
+                    var nx1 = Simd.Ld(ref rest, p.Orx + rn); var ny1 = Simd.Ld(ref rest, p.Ory + rn); var nz1 = Simd.Ld(ref rest, p.Orz + rn);
+                    var cx1 = Simd.MulSub(fqy, nz1, fqz * ny1); var cy1 = Simd.MulSub(fqz, nx1, fqx * nz1); var cz1 = Simd.MulSub(fqx, ny1, fqy * nx1);
+                    var gx1 = Simd.NegMulAdd(fqz, cy1, Simd.MulAdd(fqy, cz1, fqw * cx1)); var gy1 = Simd.NegMulAdd(fqx, cz1, Simd.MulAdd(fqz, cx1, fqw * cy1));
+                    var gz1 = Simd.NegMulAdd(fqy, cx1, Simd.MulAdd(fqx, cy1, fqw * cz1));
                     var twice = invF2 + invF2;
                     Simd.St(ref s, Stx * lanes + h, Simd.MulAdd(gx1, twice, nx1)); Simd.St(ref s, Sty * lanes + h, Simd.MulAdd(gy1, twice, ny1));
                     Simd.St(ref s, Stz * lanes + h, Simd.MulAdd(gz1, twice, nz1));
                 }
-                // The frame so far, f∘q scaled to unit length (a product of unit quaternions; q is rebuilt from the head every substep).
                 var fInv = Vector.SquareRoot(invF2);
-                Simd.St(ref s, Sqx * lanes + h, Simd.NegMulAdd(fz, qy, Simd.MulAdd(fy, qz, Simd.MulAdd(fx, qw, fw * qx))) * fInv);
-                Simd.St(ref s, Sqy * lanes + h, Simd.MulAdd(fz, qx, Simd.MulAdd(fy, qw, Simd.NegMulAdd(fx, qz, fw * qy))) * fInv);
-                Simd.St(ref s, Sqz * lanes + h, Simd.MulAdd(fz, qw, Simd.NegMulAdd(fy, qx, Simd.MulAdd(fx, qy, fw * qz))) * fInv);
-                Simd.St(ref s, Sqw * lanes + h, Simd.NegMulAdd(fz, qz, Simd.NegMulAdd(fy, qy, Simd.NegMulAdd(fx, qx, fw * qw))) * fInv);
+                Simd.St(ref s, Sqx * lanes + h, fqx * fInv); Simd.St(ref s, Sqy * lanes + h, fqy * fInv);
+                Simd.St(ref s, Sqz * lanes + h, fqz * fInv); Simd.St(ref s, Sqw * lanes + h, fqw * fInv);
             }
         }
         if (rows < 2) return;

@@ -155,9 +155,7 @@ public sealed partial class FastBendSystem
                 St16(ref s, Scz * lanes + h, Fnma(along, dz, uz) * inv);
                 St16(ref s, Sdx * lanes + h, dx); St16(ref s, Sdy * lanes + h, dy); St16(ref s, Sdz * lanes + h, dz);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
-                // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised: the
-                // next target is this row's rest-turned target t̃ = q r_{k+1} q* turned by f as f t̃ f*/|f|², which needs
-                // no square root (the root that scales f∘q to unit length is off the row-to-row chain).
+                // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised (below).
                 V gx = dx, gy = dy, gz = dz, gl = one;
                 if (allFree && AllSet(mOk)) { gx = mx; gy = my; gz = mz; gl = ml; }
                 else
@@ -171,22 +169,27 @@ public sealed partial class FastBendSystem
                 if (flip != V.Zero) { fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw); }
                 var invF2 = one / Fma(fw, fw, Fma(fz, fz, Fma(fy, fy, fx * fx)));
                 var qx = Ld16(ref s, Sqx * lanes + h); var qy = Ld16(ref s, Sqy * lanes + h); var qz = Ld16(ref s, Sqz * lanes + h); var qw = Ld16(ref s, Sqw * lanes + h);
+                // The frame so far, Q = f∘q, left unnormalised (|Q|² = |f|² as q is a unit quaternion): the next target,
+                // this row's next rest direction turned by Q, is r + (2/|Q|²)(Q_w (Q×r) + Q×(Q×r)) with 1/|f|² from above,
+                // so it waits for no square root; q for the next row is Q scaled to unit length, off that chain.
+                var fqx = Fnma(fz, qy, Fma(fy, qz, Fma(fx, qw, fw * qx)));
+                var fqy = Fma(fz, qx, Fma(fy, qw, Fnma(fx, qz, fw * qy)));
+                var fqz = Fma(fz, qw, Fnma(fy, qx, Fma(fx, qy, fw * qz)));
+                var fqw = Fnma(fz, qz, Fnma(fy, qy, Fnma(fx, qx, fw * qw)));
                 if (k + 1 < rows)
                 {
                     int rn = r + lanes;
-                    Turn16(qx, qy, qz, qw, Ld16(ref rest, p.Orx + rn), Ld16(ref rest, p.Ory + rn), Ld16(ref rest, p.Orz + rn), out var nx1, out var ny1, out var nz1);
-                    // f v f*/|f|² = v + (2/|f|²)(w (f×v) + f×(f×v)).
-                    var ex1 = Fms(fy, nz1, fz * ny1); var ey1 = Fms(fz, nx1, fx * nz1); var ez1 = Fms(fx, ny1, fy * nx1);
-                    var gx1 = Fms(fy, ez1, Fnma(fw, ex1, fz * ey1)); var gy1 = Fms(fz, ex1, Fnma(fw, ey1, fx * ez1)); var gz1 = Fms(fx, ey1, Fnma(fw, ez1, fy * ex1));
+                    var nx1 = Ld16(ref rest, p.Orx + rn); var ny1 = Ld16(ref rest, p.Ory + rn); var nz1 = Ld16(ref rest, p.Orz + rn);
+                    var cx1 = Fms(fqy, nz1, fqz * ny1); var cy1 = Fms(fqz, nx1, fqx * nz1); var cz1 = Fms(fqx, ny1, fqy * nx1);
+                    var gx1 = Fnma(fqz, cy1, Fma(fqy, cz1, fqw * cx1)); var gy1 = Fnma(fqx, cz1, Fma(fqz, cx1, fqw * cy1));
+                    var gz1 = Fnma(fqy, cx1, Fma(fqx, cy1, fqw * cz1));
                     var twice = invF2 + invF2;
-                    St16(ref s, Stx * lanes + h, Fma(gx1, twice, nx1)); St16(ref s, Sty * lanes + h, Fma(gy1, twice, ny1)); St16(ref s, Stz * lanes + h, Fma(gz1, twice, nz1));
+                    St16(ref s, Stx * lanes + h, Fma(gx1, twice, nx1)); St16(ref s, Sty * lanes + h, Fma(gy1, twice, ny1));
+                    St16(ref s, Stz * lanes + h, Fma(gz1, twice, nz1));
                 }
-                // The frame so far, f∘q scaled to unit length (a product of unit quaternions; q is rebuilt from the head every substep).
                 var fInv = Vector512.Sqrt(invF2);
-                St16(ref s, Sqx * lanes + h, Fnma(fz, qy, Fma(fy, qz, Fma(fx, qw, fw * qx))) * fInv);
-                St16(ref s, Sqy * lanes + h, Fma(fz, qx, Fma(fy, qw, Fnma(fx, qz, fw * qy))) * fInv);
-                St16(ref s, Sqz * lanes + h, Fma(fz, qw, Fnma(fy, qx, Fma(fx, qy, fw * qz))) * fInv);
-                St16(ref s, Sqw * lanes + h, Fnma(fz, qz, Fnma(fy, qy, Fnma(fx, qx, fw * qw))) * fInv);
+                St16(ref s, Sqx * lanes + h, fqx * fInv); St16(ref s, Sqy * lanes + h, fqy * fInv);
+                St16(ref s, Sqz * lanes + h, fqz * fInv); St16(ref s, Sqw * lanes + h, fqw * fInv);
             }
         }
         if (rows < 2) return;
