@@ -28,12 +28,14 @@ public sealed partial class FastBendSystem
     }
 
     // Slots of a chain's state carried from row to row (each Vector<float>.Count wide, one per half of the tile row):
-    // the frame q, the parent's direction and turn, and its correction Δ (its kick waits for this row's correction).
+    // the frame q, the parent's angular turn w = d × c (its direction crossed with its turn c = (u − (u·d)d)/len, which
+    // is (d × u)/len: no projection needed), its correction Δ (its kick waits for this row's correction) and the
+    // target.
     // What can be read back from the tile instead is: the parent's position (stored there in its own row), its move
     // so far (h·v + Δ, with v not yet kicked) and whether it is free (its inverse mass). Fewer stores per row made
     // the sweep measurably faster (the same bits).
-    private const int Sqx = 0, Sqy = 1, Sqz = 2, Sqw = 3, Sdx = 4, Sdy = 5, Sdz = 6, Scx = 7, Scy = 8, Scz = 9,
-        SDx = 10, SDy = 11, SDz = 12, Stx = 13, Sty = 14, Stz = 15, Slots = 16;
+    private const int Sqx = 0, Sqy = 1, Sqz = 2, Sqw = 3, Swx = 4, Swy = 5, Swz = 6,
+        SDx = 7, SDy = 8, SDz = 9, Stx = 10, Sty = 11, Stz = 12, Slots = 13;
 
     /// <summary>
     /// Root to tip over rows 1 … rows−1, each row's velocity kick applied one row later (it needs the child's
@@ -55,7 +57,7 @@ public sealed partial class FastBendSystem
             Simd.St(ref s, Sqx * lanes + h, new V(p.Qx)); Simd.St(ref s, Sqy * lanes + h, new V(p.Qy));
             Simd.St(ref s, Sqz * lanes + h, new V(p.Qz)); Simd.St(ref s, Sqw * lanes + h, new V(p.Qw));
             // Direction, turn and correction start at zero. The root is never kicked: it follows the head.
-            for (int slot = Sdx; slot < Stx; slot++) Simd.St(ref s, slot * lanes + h, zero);
+            for (int slot = Swx; slot < Stx; slot++) Simd.St(ref s, slot * lanes + h, zero);
             if (rows < 2) continue;
             // Segment 1's target: its rest direction turned by the head.
             Turn(new V(p.Qx), new V(p.Qy), new V(p.Qz), new V(p.Qw),
@@ -109,10 +111,8 @@ public sealed partial class FastBendSystem
                     var tcx = Simd.Sel(byE, Simd.NegMulAdd(ue, ex, ux) * inv, Simd.NegMulAdd(al, dx, ux) * inv);
                     var tcy = Simd.Sel(byE, Simd.NegMulAdd(ue, ey, uy) * inv, Simd.NegMulAdd(al, dy, uy) * inv);
                     var tcz = Simd.Sel(byE, Simd.NegMulAdd(ue, ez, uz) * inv, Simd.NegMulAdd(al, dz, uz) * inv);
-                    // Target turned with the parent: Δt = (d_p × c_p) × t.
-                    var pdx = Simd.Ld(ref s, Sdx * lanes + h); var pdy = Simd.Ld(ref s, Sdy * lanes + h); var pdz = Simd.Ld(ref s, Sdz * lanes + h);
-                    var pcx = Simd.Ld(ref s, Scx * lanes + h); var pcy = Simd.Ld(ref s, Scy * lanes + h); var pcz = Simd.Ld(ref s, Scz * lanes + h);
-                    var wx = Simd.MulSub(pdy, pcz, pdz * pcy); var wy = Simd.MulSub(pdz, pcx, pdx * pcz); var wz = Simd.MulSub(pdx, pcy, pdy * pcx);
+                    // Target turned with the parent: Δt = w_p × t.
+                    var wx = Simd.Ld(ref s, Swx * lanes + h); var wy = Simd.Ld(ref s, Swy * lanes + h); var wz = Simd.Ld(ref s, Swz * lanes + h);
                     var ttx = Simd.MulSub(wy, tz, wz * ty); var tty = Simd.MulSub(wz, tx, wx * tz); var ttz = Simd.MulSub(wx, ty, wy * tx);
                     // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
                     var a = Simd.Ld(ref rest, p.Oa + r); var b = Simd.Ld(ref rest, p.Ob + r);
@@ -138,10 +138,9 @@ public sealed partial class FastBendSystem
                 Simd.St(ref s, SDx * lanes + h, cdx); Simd.St(ref s, SDy * lanes + h, cdy); Simd.St(ref s, SDz * lanes + h, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
-                var along = Simd.MulAdd(uz, dz, Simd.MulAdd(uy, dy, ux * dx));
-                Simd.St(ref s, Scx * lanes + h, Simd.NegMulAdd(along, dx, ux) * inv); Simd.St(ref s, Scy * lanes + h, Simd.NegMulAdd(along, dy, uy) * inv);
-                Simd.St(ref s, Scz * lanes + h, Simd.NegMulAdd(along, dz, uz) * inv);
-                Simd.St(ref s, Sdx * lanes + h, dx); Simd.St(ref s, Sdy * lanes + h, dy); Simd.St(ref s, Sdz * lanes + h, dz);
+                // As the child's parent turn: w = d × c = (d × u)/len.
+                Simd.St(ref s, Swx * lanes + h, Simd.MulSub(dy, uz, dz * uy) * inv); Simd.St(ref s, Swy * lanes + h, Simd.MulSub(dz, ux, dx * uz) * inv);
+                Simd.St(ref s, Swz * lanes + h, Simd.MulSub(dx, uy, dy * ux) * inv);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
                 // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised (below).
                 var byM = free & mOk;

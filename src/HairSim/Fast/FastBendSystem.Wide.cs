@@ -42,7 +42,7 @@ public sealed partial class FastBendSystem
             St16(ref s, Sqx * lanes + h, Vector512.Create(p.Qx)); St16(ref s, Sqy * lanes + h, Vector512.Create(p.Qy));
             St16(ref s, Sqz * lanes + h, Vector512.Create(p.Qz)); St16(ref s, Sqw * lanes + h, Vector512.Create(p.Qw));
             // Direction, turn and correction start at zero. The root is never kicked: it follows the head.
-            for (int slot = Sdx; slot < Stx; slot++) St16(ref s, slot * lanes + h, zero);
+            for (int slot = Swx; slot < Stx; slot++) St16(ref s, slot * lanes + h, zero);
             if (rows < 2) continue;
             // Segment 1's target: its rest direction turned by the head.
             Turn16(Vector512.Create(p.Qx), Vector512.Create(p.Qy), Vector512.Create(p.Qz), Vector512.Create(p.Qw),
@@ -111,10 +111,8 @@ public sealed partial class FastBendSystem
                         var al = Fma(uz, dz, Fma(uy, dy, ux * dx));
                         tcx = Sel16(byE, tcx, Fnma(al, dx, ux) * inv); tcy = Sel16(byE, tcy, Fnma(al, dy, uy) * inv); tcz = Sel16(byE, tcz, Fnma(al, dz, uz) * inv);
                     }
-                    // Target turned with the parent: Δt = (d_p × c_p) × t.
-                    var pdx = Ld16(ref s, Sdx * lanes + h); var pdy = Ld16(ref s, Sdy * lanes + h); var pdz = Ld16(ref s, Sdz * lanes + h);
-                    var pcx = Ld16(ref s, Scx * lanes + h); var pcy = Ld16(ref s, Scy * lanes + h); var pcz = Ld16(ref s, Scz * lanes + h);
-                    var wx = Fms(pdy, pcz, pdz * pcy); var wy = Fms(pdz, pcx, pdx * pcz); var wz = Fms(pdx, pcy, pdy * pcx);
+                    // Target turned with the parent: Δt = w_p × t.
+                    var wx = Ld16(ref s, Swx * lanes + h); var wy = Ld16(ref s, Swy * lanes + h); var wz = Ld16(ref s, Swz * lanes + h);
                     var ttx = Fms(wy, tz, wz * ty); var tty = Fms(wz, tx, wx * tz); var ttz = Fms(wx, ty, wy * tx);
                     // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
                     var a = Ld16(ref rest, p.Oa + r); var b = Ld16(ref rest, p.Ob + r);
@@ -150,10 +148,9 @@ public sealed partial class FastBendSystem
                 St16(ref s, SDx * lanes + h, cdx); St16(ref s, SDy * lanes + h, cdy); St16(ref s, SDz * lanes + h, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
-                var along = Fma(uz, dz, Fma(uy, dy, ux * dx));
-                St16(ref s, Scx * lanes + h, Fnma(along, dx, ux) * inv); St16(ref s, Scy * lanes + h, Fnma(along, dy, uy) * inv);
-                St16(ref s, Scz * lanes + h, Fnma(along, dz, uz) * inv);
-                St16(ref s, Sdx * lanes + h, dx); St16(ref s, Sdy * lanes + h, dy); St16(ref s, Sdz * lanes + h, dz);
+                // As the child's parent turn: w = d × c = (d × u)/len.
+                St16(ref s, Swx * lanes + h, Fms(dy, uz, dz * uy) * inv); St16(ref s, Swy * lanes + h, Fms(dz, ux, dx * uz) * inv);
+                St16(ref s, Swz * lanes + h, Fms(dx, uy, dy * ux) * inv);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
                 // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised (below).
                 V gx = dx, gy = dy, gz = dz, gl = one;
