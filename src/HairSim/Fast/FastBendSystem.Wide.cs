@@ -13,26 +13,16 @@ namespace HairSim.Fast;
 /// </summary>
 public sealed partial class FastBendSystem
 {
-    /// <summary>Sweep constants broadcast to 16 lanes.</summary>
-    private readonly struct Consts16
-    {
-        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed, MaxSpeedSq, Tiny;
-
-        public Consts16(in SweepParams p)
-        {
-            Tiny = Vector512.Create(1e-30f);
-            H = Vector512.Create(p.H); InvH = Vector512.Create(p.InvH); Reaction = Vector512.Create(p.Reaction); MaxSpeed = Vector512.Create(p.MaxSpeed); MaxSpeedSq = Vector512.Create(p.MaxSpeed * p.MaxSpeed);
-            FallX = Vector512.Create(p.FallX); FallY = Vector512.Create(p.FallY); FallZ = Vector512.Create(p.FallZ);
-            Eps = Vector512.Create(1e-6f); Flip = Vector512.Create(-0.9999f);
-        }
-    }
-
-    /// <summary><see cref="Sweep"/> on 16-lane vectors.</summary>
+    /// <summary>
+    /// <see cref="Sweep"/> on 16-lane vectors. The constants are broadcast where they are used
+    /// (<c>Vector512.Create(p.H)</c>): the JIT folds each into its instruction as an embedded broadcast from memory, so
+    /// none holds one of the 32 vector registers; held in a struct of vectors they pushed the row's own values onto
+    /// the stack (twice the spills, and a 7–10 % slower frame interleaved).
+    /// </summary>
     [SkipLocalsInit]
     private static void Sweep16(ref float d, ref float rest, int rows, in SweepParams p)
     {
         const int width = 16; int lanes = p.Lanes;
-        var c = new Consts16(in p);
         var one = V.One;
         var zero = V.Zero;
         Span<float> stateSpan = stackalloc float[Slots * lanes];
@@ -67,12 +57,9 @@ public sealed partial class FastBendSystem
                 var hasLen = Vector512.GreaterThan(len, zero);
                 // Masks that are all set (the common case: every lane a live, moving, non-degenerate segment) make
                 // their selects identities, so those are skipped: the same bits with fewer operations.
-                bool allLen = AllSet(hasLen);
-                // 1/len as len/len² where every lane's len² is far from underflow: the root and the division run side
-                // by side instead of one after the other (the row's new position waits on this, and on |m| below).
                 // 1/len as len/len² where len² is far from underflow: the root and the division run side by side
                 // instead of one after the other (the row's new position waits on them, and on |m| below).
-                var clear = Vector512.GreaterThan(len2, c.Tiny);
+                var clear = Vector512.GreaterThan(len2, Vector512.Create(1e-30f));
                 bool allClear = AllSet(clear);
                 var inv2 = one / len2;
                 var inv = allClear ? len * inv2 : Sel16(clear, len * inv2, Sel16(hasLen, one / Sel16(hasLen, len, one), zero));
@@ -88,13 +75,13 @@ public sealed partial class FastBendSystem
                     ty = Sel16(restOk, ty, Sel16(hasLen, uy0, Vector512.Create(-1f)));
                     tz = Sel16(restOk, tz, Sel16(hasLen, uz0, zero));
                 }
-                var okLen = Vector512.GreaterThan(len, c.Eps * rl) & hasLen;
+                var okLen = Vector512.GreaterThan(len, Vector512.Create(1e-6f) * rl) & hasLen;
                 V dx = ux0, dy = uy0, dz = uz0;
                 if (!AllSet(okLen)) { dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz); }
                 // How far this segment turned since the substep's start (see BendSystem).
-                var ux = Fms(c.H, Ld16(ref d, p.Ovx + r), Fma(c.H, Ld16(ref d, p.Ovx + r - lanes), Ld16(ref s, SDx * lanes + h)));
-                var uy = Fms(c.H, Ld16(ref d, p.Ovy + r), Fma(c.H, Ld16(ref d, p.Ovy + r - lanes), Ld16(ref s, SDy * lanes + h)));
-                var uz = Fms(c.H, Ld16(ref d, p.Ovz + r), Fma(c.H, Ld16(ref d, p.Ovz + r - lanes), Ld16(ref s, SDz * lanes + h)));
+                var ux = Fms(Vector512.Create(p.H), Ld16(ref d, p.Ovx + r), Fma(Vector512.Create(p.H), Ld16(ref d, p.Ovx + r - lanes), Ld16(ref s, SDx * lanes + h)));
+                var uy = Fms(Vector512.Create(p.H), Ld16(ref d, p.Ovy + r), Fma(Vector512.Create(p.H), Ld16(ref d, p.Ovy + r - lanes), Ld16(ref s, SDy * lanes + h)));
+                var uz = Fms(Vector512.Create(p.H), Ld16(ref d, p.Ovz + r), Fma(Vector512.Create(p.H), Ld16(ref d, p.Ovz + r - lanes), Ld16(ref s, SDz * lanes + h)));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 bool allFree = AllSet(free), noneFree = free == V.Zero;
@@ -121,7 +108,7 @@ public sealed partial class FastBendSystem
                     mx = Fma(b, sx, Fma(a, ox, tx)); my = Fma(b, sy, Fma(a, oy, ty)); mz = Fma(b, sz, Fma(a, oz, tz));
                     var m2 = Fma(mz, mz, Fma(my, my, mx * mx));
                     ml = Vector512.Sqrt(m2);
-                    mOk = Vector512.GreaterThan(ml, c.Eps);
+                    mOk = Vector512.GreaterThan(ml, Vector512.Create(1e-6f));
                     if (AllSet(mOk))
                     {
                         var invM = ml * (one / m2);
@@ -141,10 +128,10 @@ public sealed partial class FastBendSystem
                 x += cdx; y += cdy; z += cdz;
                 St16(ref d, p.Ox + r, x); St16(ref d, p.Oy + r, y); St16(ref d, p.Oz + r, z);
                 // The row above takes its kick now that this row's correction is known.
-                Kick16(ref d, in p, in c, r - lanes, k == 1 ? zero : ~Vector512.Equals(Ld16(ref d, p.Om + r - lanes), zero),
+                Kick16(ref d, in p, r - lanes, k == 1 ? zero : ~Vector512.Equals(Ld16(ref d, p.Om + r - lanes), zero),
                     Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h),
-                    cdx + (allFree ? c.FallX : Sel16(free, c.FallX, zero)), cdy + (allFree ? c.FallY : Sel16(free, c.FallY, zero)),
-                    cdz + (allFree ? c.FallZ : Sel16(free, c.FallZ, zero)));
+                    cdx + (allFree ? Vector512.Create(p.FallX) : Sel16(free, Vector512.Create(p.FallX), zero)), cdy + (allFree ? Vector512.Create(p.FallY) : Sel16(free, Vector512.Create(p.FallY), zero)),
+                    cdz + (allFree ? Vector512.Create(p.FallZ) : Sel16(free, Vector512.Create(p.FallZ), zero)));
                 St16(ref s, SDx * lanes + h, cdx); St16(ref s, SDy * lanes + h, cdy); St16(ref s, SDz * lanes + h, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
@@ -162,7 +149,7 @@ public sealed partial class FastBendSystem
                 }
                 var dot = Fma(tz, gz, Fma(ty, gy, tx * gx));
                 var fx = Fms(ty, gz, tz * gy); var fy = Fms(tz, gx, tx * gz); var fz = Fms(tx, gy, ty * gx); var fw = gl + dot;
-                var flip = Vector512.LessThan(dot, c.Flip * gl);
+                var flip = Vector512.LessThan(dot, Vector512.Create(-0.9999f) * gl);
                 if (flip != V.Zero) { fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw); }
                 var invF2 = one / Fma(fw, fw, Fma(fz, fz, Fma(fy, fy, fx * fx)));
                 var qx = Ld16(ref s, Sqx * lanes + h); var qy = Ld16(ref s, Sqy * lanes + h); var qz = Ld16(ref s, Sqz * lanes + h); var qw = Ld16(ref s, Sqw * lanes + h);
@@ -191,7 +178,7 @@ public sealed partial class FastBendSystem
         }
         if (rows < 2) return;
         for (int h = 0; h < lanes; h += width)
-            Kick16(ref d, in p, in c, (rows - 1) * lanes + h, ~Vector512.Equals(Ld16(ref d, p.Om + (rows - 1) * lanes + h), zero),
+            Kick16(ref d, in p, (rows - 1) * lanes + h, ~Vector512.Equals(Ld16(ref d, p.Om + (rows - 1) * lanes + h), zero),
                 Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h), zero, zero, zero);
     }
 
@@ -209,16 +196,16 @@ public sealed partial class FastBendSystem
 
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Kick16(ref float d, in SweepParams p, in Consts16 c, int r, V free, V dx, V dy, V dz, V nx, V ny, V nz)
+    private static void Kick16(ref float d, in SweepParams p, int r, V free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
         var vx = Ld16(ref d, p.Ovx + r); var vy = Ld16(ref d, p.Ovy + r); var vz = Ld16(ref d, p.Ovz + r);
-        var wx = Fma(Fnma(c.Reaction, nx, dx), c.InvH, vx); var wy = Fma(Fnma(c.Reaction, ny, dy), c.InvH, vy); var wz = Fma(Fnma(c.Reaction, nz, dz), c.InvH, vz);
+        var wx = Fma(Fnma(Vector512.Create(p.Reaction), nx, dx), Vector512.Create(p.InvH), vx); var wy = Fma(Fnma(Vector512.Create(p.Reaction), ny, dy), Vector512.Create(p.InvH), vy); var wz = Fma(Fnma(Vector512.Create(p.Reaction), nz, dz), Vector512.Create(p.InvH), vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
         var speedSq = Fma(wz, wz, Fma(wy, wy, wx * wx));
-        var over = Vector512.GreaterThan(speedSq, c.MaxSpeedSq);
+        var over = Vector512.GreaterThan(speedSq, Vector512.Create(p.MaxSpeedSq));
         if (over != V.Zero)
         {
-            var f = c.MaxSpeed / Sel16(over, Vector512.Sqrt(speedSq), V.One);
+            var f = Vector512.Create(p.MaxSpeed) / Sel16(over, Vector512.Sqrt(speedSq), V.One);
             wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
         }
         if (!AllSet(free)) { wx = Sel16(free, wx, vx); wy = Sel16(free, wy, vy); wz = Sel16(free, wz, vz); }

@@ -222,7 +222,7 @@ public sealed partial class FastBendSystem : IHairSystem
     {
         public readonly float H, InvH, Reaction, FallX, FallY, FallZ;
         /// <summary>The speed limit (m/s) the kick clamps velocities to; +∞ when off.</summary>
-        public readonly float MaxSpeed;
+        public readonly float MaxSpeed, MaxSpeedSq;
         public readonly float Qx, Qy, Qz, Qw;
         public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Orx, Ory, Orz, Oa, Ob, Lanes;
         /// <summary>The chunk runner's prefetch of the next chunk, advanced once per row (0: none).</summary>
@@ -243,6 +243,7 @@ public sealed partial class FastBendSystem : IHairSystem
             float kappa = MathF.Max(0f, 1f - st.Damping * h);
             FallX = st.Gravity.X * h * h * kappa; FallY = st.Gravity.Y * h * h * kappa; FallZ = st.Gravity.Z * h * h * kappa;
             MaxSpeed = st.MaxSpeed > 0f ? st.MaxSpeed : float.PositiveInfinity;
+            MaxSpeedSq = MaxSpeed * MaxSpeed;
             var q = ctx.HeadAt(substep).Rotation;
             Qx = q.X; Qy = q.Y; Qz = q.Z; Qw = q.W;
             Ox = ox; Oy = oy; Oz = oz; Ovx = ovx; Ovy = ovy; Ovz = ovz; Om = om; Ol = ol;
