@@ -37,7 +37,7 @@ public static class ColliderRay
 
     /// <summary>
     /// First hit t in [0, maxT] of the ray o + t·d (d unit, world space) with a mesh collider whose field is at
-    /// <paramref name="head"/> (the head pose, or <see cref="MeshCollider.PoseFor"/> of it for a placed collider): sphere
+    /// <paramref name="head"/> (the head pose, or <see cref="MeshCollider.PoseFor(in RigidTransform)"/> of it for a placed collider): sphere
     /// tracing of its distance field in head space, from where the ray enters the field's grid.
     /// </summary>
     public static bool Intersect(MeshCollider mesh, in RigidTransform head, Vector3 o, Vector3 d, float maxT, out float t)

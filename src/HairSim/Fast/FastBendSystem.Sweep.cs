@@ -12,21 +12,6 @@ namespace HairSim.Fast;
 /// </summary>
 public sealed partial class FastBendSystem
 {
-    /// <summary>Sweep constants broadcast to Vector&lt;float&gt; lanes.</summary>
-    private readonly struct Consts
-    {
-        public readonly V H, InvH, Reaction, FallX, FallY, FallZ, Eps, Flip, MaxSpeed, MaxSpeedSq, Tiny;
-
-        public Consts(in SweepParams p)
-        {
-            // len² above this: 1/len² is finite, so 1/len may be taken as len/len².
-            Tiny = new(1e-30f);
-            H = new(p.H); InvH = new(p.InvH); Reaction = new(p.Reaction); MaxSpeed = new(p.MaxSpeed); MaxSpeedSq = new(p.MaxSpeed * p.MaxSpeed);
-            FallX = new(p.FallX); FallY = new(p.FallY); FallZ = new(p.FallZ);
-            Eps = new(1e-6f); Flip = new(-0.9999f);
-        }
-    }
-
     // Slots of a chain's state carried from row to row (each Vector<float>.Count wide, one per half of the tile row):
     // the frame q, the parent's angular turn w = d × c (its direction crossed with its turn c = (u − (u·d)d)/len, which
     // is (d × u)/len: no projection needed), its correction Δ (its kick waits for this row's correction) and the
@@ -42,12 +27,12 @@ public sealed partial class FastBendSystem
     /// correction): v += (Δ_k − s·(Δ_{k+1} + fall of a free k+1)) / h for free particles (see BendSystem).
     /// The halves of a row are independent chains, so the CPU overlaps their latencies; each carries its state in
     /// a small stack buffer between rows (too much state for the registers anyway, and one loop body for both).
+    /// Constants are broadcast where they are used (<c>new V(p.H)</c>), not held in vector registers: see Sweep16.
     /// </summary>
     [SkipLocalsInit]
     private static void Sweep(ref float d, ref float rest, int rows, in SweepParams p)
     {
         int width = V.Count, lanes = p.Lanes;
-        var c = new Consts(in p);
         var one = V.One;
         var zero = V.Zero;
         Span<float> stateSpan = stackalloc float[Slots * lanes];
@@ -80,7 +65,7 @@ public sealed partial class FastBendSystem
                 var hasLen = Vector.GreaterThan(len, zero);
                 // 1/len as len/len² where len² is far from underflow: the root and the division run side by side
                 // instead of one after the other (the row's new position waits on them, and on |m| below).
-                var clear = Vector.GreaterThan(len2, c.Tiny);
+                var clear = Vector.GreaterThan(len2, new V(1e-30f));
                 var inv2 = one / len2;
                 var inv = Simd.Sel(clear, len * inv2, Simd.Sel(hasLen, one / Simd.Sel(hasLen, len, one), zero));
                 var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
@@ -92,12 +77,12 @@ public sealed partial class FastBendSystem
                 tx = Simd.Sel(restOk, tx, Simd.Sel(hasLen, ux0, zero));
                 ty = Simd.Sel(restOk, ty, Simd.Sel(hasLen, uy0, new V(-1f)));
                 tz = Simd.Sel(restOk, tz, Simd.Sel(hasLen, uz0, zero));
-                var okLen = Vector.GreaterThan(len, c.Eps * rl) & hasLen;
+                var okLen = Vector.GreaterThan(len, new V(1e-6f) * rl) & hasLen;
                 var dx = Simd.Sel(okLen, ux0, tx); var dy = Simd.Sel(okLen, uy0, ty); var dz = Simd.Sel(okLen, uz0, tz);
                 // How far this segment turned since the substep's start (see BendSystem).
-                var ux = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovx + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovx + r - lanes), Simd.Ld(ref s, SDx * lanes + h)));
-                var uy = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovy + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovy + r - lanes), Simd.Ld(ref s, SDy * lanes + h)));
-                var uz = Simd.MulSub(c.H, Simd.Ld(ref d, p.Ovz + r), Simd.MulAdd(c.H, Simd.Ld(ref d, p.Ovz + r - lanes), Simd.Ld(ref s, SDz * lanes + h)));
+                var ux = Simd.MulSub(new V(p.H), Simd.Ld(ref d, p.Ovx + r), Simd.MulAdd(new V(p.H), Simd.Ld(ref d, p.Ovx + r - lanes), Simd.Ld(ref s, SDx * lanes + h)));
+                var uy = Simd.MulSub(new V(p.H), Simd.Ld(ref d, p.Ovy + r), Simd.MulAdd(new V(p.H), Simd.Ld(ref d, p.Ovy + r - lanes), Simd.Ld(ref s, SDy * lanes + h)));
+                var uz = Simd.MulSub(new V(p.H), Simd.Ld(ref d, p.Ovz + r), Simd.MulAdd(new V(p.H), Simd.Ld(ref d, p.Ovz + r - lanes), Simd.Ld(ref s, SDz * lanes + h)));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 V mx = zero, my = zero, mz = zero, ml = zero, cdx = zero, cdy = zero, cdz = zero;
@@ -121,7 +106,7 @@ public sealed partial class FastBendSystem
                     mx = Simd.MulAdd(b, sx, Simd.MulAdd(a, ox, tx)); my = Simd.MulAdd(b, sy, Simd.MulAdd(a, oy, ty)); mz = Simd.MulAdd(b, sz, Simd.MulAdd(a, oz, tz));
                     var m2 = Simd.MulAdd(mz, mz, Simd.MulAdd(my, my, mx * mx));
                     ml = Vector.SquareRoot(m2);
-                    mOk = Vector.GreaterThan(ml, c.Eps);
+                    mOk = Vector.GreaterThan(ml, new V(1e-6f));
                     // 1/|m| as |m|/|m|², as 1/len above.
                     var invM = ml * (one / Simd.Sel(mOk, m2, one));
                     var ndx = Simd.Sel(mOk, mx * invM, tx); var ndy = Simd.Sel(mOk, my * invM, ty); var ndz = Simd.Sel(mOk, mz * invM, tz);
@@ -132,9 +117,9 @@ public sealed partial class FastBendSystem
                 x += cdx; y += cdy; z += cdz;
                 Simd.St(ref d, p.Ox + r, x); Simd.St(ref d, p.Oy + r, y); Simd.St(ref d, p.Oz + r, z);
                 // The row above takes its kick now that this row's correction is known.
-                Kick(ref d, in p, in c, r - lanes, k == 1 ? Vector<int>.Zero : ~Vector.Equals(Simd.Ld(ref d, p.Om + r - lanes), zero),
+                Kick(ref d, in p, r - lanes, k == 1 ? Vector<int>.Zero : ~Vector.Equals(Simd.Ld(ref d, p.Om + r - lanes), zero),
                     Simd.Ld(ref s, SDx * lanes + h), Simd.Ld(ref s, SDy * lanes + h), Simd.Ld(ref s, SDz * lanes + h),
-                    cdx + Simd.Sel(free, c.FallX, zero), cdy + Simd.Sel(free, c.FallY, zero), cdz + Simd.Sel(free, c.FallZ, zero));
+                    cdx + Simd.Sel(free, new V(p.FallX), zero), cdy + Simd.Sel(free, new V(p.FallY), zero), cdz + Simd.Sel(free, new V(p.FallZ), zero));
                 Simd.St(ref s, SDx * lanes + h, cdx); Simd.St(ref s, SDy * lanes + h, cdy); Simd.St(ref s, SDz * lanes + h, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
@@ -147,7 +132,7 @@ public sealed partial class FastBendSystem
                 var gx = Simd.Sel(byM, mx, dx); var gy = Simd.Sel(byM, my, dy); var gz = Simd.Sel(byM, mz, dz); var gl = Simd.Sel(byM, ml, one);
                 var dot = Simd.MulAdd(tz, gz, Simd.MulAdd(ty, gy, tx * gx));
                 var fx = Simd.MulSub(ty, gz, tz * gy); var fy = Simd.MulSub(tz, gx, tx * gz); var fz = Simd.MulSub(tx, gy, ty * gx); var fw = gl + dot;
-                var flip = Vector.LessThan(dot, c.Flip * gl);
+                var flip = Vector.LessThan(dot, new V(-0.9999f) * gl);
                 fx = Simd.Sel(flip, zero, fx); fy = Simd.Sel(flip, zero, fy); fz = Simd.Sel(flip, zero, fz); fw = Simd.Sel(flip, one, fw);
                 var invF2 = one / Simd.MulAdd(fw, fw, Simd.MulAdd(fz, fz, Simd.MulAdd(fy, fy, fx * fx)));
                 var qx = Simd.Ld(ref s, Sqx * lanes + h); var qy = Simd.Ld(ref s, Sqy * lanes + h); var qz = Simd.Ld(ref s, Sqz * lanes + h); var qw = Simd.Ld(ref s, Sqw * lanes + h);
@@ -176,7 +161,7 @@ public sealed partial class FastBendSystem
         }
         if (rows < 2) return;
         for (int h = 0; h < lanes; h += width)
-            Kick(ref d, in p, in c, (rows - 1) * lanes + h, ~Vector.Equals(Simd.Ld(ref d, p.Om + (rows - 1) * lanes + h), zero),
+            Kick(ref d, in p, (rows - 1) * lanes + h, ~Vector.Equals(Simd.Ld(ref d, p.Om + (rows - 1) * lanes + h), zero),
                 Simd.Ld(ref s, SDx * lanes + h), Simd.Ld(ref s, SDy * lanes + h), Simd.Ld(ref s, SDz * lanes + h), zero, zero, zero);
     }
 
@@ -194,17 +179,17 @@ public sealed partial class FastBendSystem
 
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r, then clamped to the speed limit (the sweep writes velocities last).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Kick(ref float d, in SweepParams p, in Consts c, int r, Vector<int> free, V dx, V dy, V dz, V nx, V ny, V nz)
+    private static void Kick(ref float d, in SweepParams p, int r, Vector<int> free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
         var vx = Simd.Ld(ref d, p.Ovx + r); var vy = Simd.Ld(ref d, p.Ovy + r); var vz = Simd.Ld(ref d, p.Ovz + r);
-        var wx = Simd.MulAdd(Simd.NegMulAdd(c.Reaction, nx, dx), c.InvH, vx); var wy = Simd.MulAdd(Simd.NegMulAdd(c.Reaction, ny, dy), c.InvH, vy);
-        var wz = Simd.MulAdd(Simd.NegMulAdd(c.Reaction, nz, dz), c.InvH, vz);
+        var wx = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nx, dx), new V(p.InvH), vx); var wy = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), ny, dy), new V(p.InvH), vy);
+        var wz = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nz, dz), new V(p.InvH), vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
         var speedSq = Simd.MulAdd(wz, wz, Simd.MulAdd(wy, wy, wx * wx));
-        var over = Vector.GreaterThan(speedSq, c.MaxSpeedSq);
+        var over = Vector.GreaterThan(speedSq, new V(p.MaxSpeedSq));
         if (!Vector.EqualsAll(over, Vector<int>.Zero))
         {
-            var f = c.MaxSpeed / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
+            var f = new V(p.MaxSpeed) / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
             wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
         }
         Simd.St(ref d, p.Ovx + r, Simd.Sel(free, wx, vx));
