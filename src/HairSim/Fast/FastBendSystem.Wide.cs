@@ -1,3 +1,4 @@
+using System.Diagnostics;
 using System.Runtime.CompilerServices;
 using System.Runtime.Intrinsics;
 using V = System.Runtime.Intrinsics.Vector512<float>;
@@ -22,22 +23,33 @@ public sealed partial class FastBendSystem
     [SkipLocalsInit]
     private static void Sweep16(ref float d, ref float rest, int rows, in SweepParams p)
     {
-        const int width = 16; int lanes = p.Lanes;
+        // The 16-lane sweep always runs two chains of 16 (a chunk's 32 strands, or a tile of 32): the state slots then sit
+        // at constant offsets from each chain's base.
+        const int width = 16, lanes = 2 * width;
+        Debug.Assert(p.Lanes == lanes);
         var one = V.One;
         var zero = V.Zero;
         Span<float> stateSpan = stackalloc float[Slots * lanes];
         ref float s = ref stateSpan[0];
+        // Each field's row 0, and rows addressed by a native-sized index: one addressing mode per access, where an
+        // offset read from p, added, sign-extended and scaled took four instructions more each time.
+        ref float X = ref Unsafe.Add(ref d, p.Ox), Y = ref Unsafe.Add(ref d, p.Oy), Z = ref Unsafe.Add(ref d, p.Oz);
+        ref float Vx = ref Unsafe.Add(ref d, p.Ovx), Vy = ref Unsafe.Add(ref d, p.Ovy), Vz = ref Unsafe.Add(ref d, p.Ovz);
+        ref float M = ref Unsafe.Add(ref d, p.Om), Ln = ref Unsafe.Add(ref d, p.Ol);
+        ref float Rx = ref Unsafe.Add(ref rest, p.Orx), Ry = ref Unsafe.Add(ref rest, p.Ory), Rz = ref Unsafe.Add(ref rest, p.Orz);
+        ref float A = ref Unsafe.Add(ref rest, p.Oa), B = ref Unsafe.Add(ref rest, p.Ob);
         for (int h = 0; h < lanes; h += width)
         {
-            St16(ref s, Sqx * lanes + h, Vector512.Create(p.Qx)); St16(ref s, Sqy * lanes + h, Vector512.Create(p.Qy));
-            St16(ref s, Sqz * lanes + h, Vector512.Create(p.Qz)); St16(ref s, Sqw * lanes + h, Vector512.Create(p.Qw));
+            ref float sh = ref Unsafe.Add(ref s, h);
+            St16(ref sh, Sqx * lanes, Vector512.Create(p.Qx)); St16(ref sh, Sqy * lanes, Vector512.Create(p.Qy));
+            St16(ref sh, Sqz * lanes, Vector512.Create(p.Qz)); St16(ref sh, Sqw * lanes, Vector512.Create(p.Qw));
             // Direction, turn and correction start at zero. The root is never kicked: it follows the head.
-            for (int slot = Swx; slot < Stx; slot++) St16(ref s, slot * lanes + h, zero);
+            for (int slot = Swx; slot < Stx; slot++) St16(ref sh, slot * lanes, zero);
             if (rows < 2) continue;
             // Segment 1's target: its rest direction turned by the head.
             Turn16(Vector512.Create(p.Qx), Vector512.Create(p.Qy), Vector512.Create(p.Qz), Vector512.Create(p.Qw),
                 Ld16(ref rest, p.Orx + lanes + h), Ld16(ref rest, p.Ory + lanes + h), Ld16(ref rest, p.Orz + lanes + h), out var tx1, out var ty1, out var tz1);
-            St16(ref s, Stx * lanes + h, tx1); St16(ref s, Sty * lanes + h, ty1); St16(ref s, Stz * lanes + h, tz1);
+            St16(ref sh, Stx * lanes, tx1); St16(ref sh, Sty * lanes, ty1); St16(ref sh, Stz * lanes, tz1);
         }
         for (int k = 1; k < rows; k++)
         {
@@ -45,12 +57,13 @@ public sealed partial class FastBendSystem
             {
                 // A share of the next chunk's prefetch per half row: small enough not to fill the core's miss buffers.
                 Prefetcher.Row(p.Prefetch);
-                int r = k * lanes + h;
-                var px = Ld16(ref d, p.Ox + r - lanes); var py = Ld16(ref d, p.Oy + r - lanes); var pz = Ld16(ref d, p.Oz + r - lanes);
-                var x = Ld16(ref d, p.Ox + r); var y = Ld16(ref d, p.Oy + r); var z = Ld16(ref d, p.Oz + r);
-                var free = ~Vector512.Equals(Ld16(ref d, p.Om + r), zero);
-                var rl = Ld16(ref d, p.Ol + r);
-                var rx = Ld16(ref rest, p.Orx + r); var ry = Ld16(ref rest, p.Ory + r); var rz = Ld16(ref rest, p.Orz + r);
+                ref float sh = ref Unsafe.Add(ref s, h);
+                nuint u = (nuint)(k * lanes + h), up = u - (nuint)lanes, un = u + (nuint)lanes;
+                var px = Ld16(ref X, up); var py = Ld16(ref Y, up); var pz = Ld16(ref Z, up);
+                var x = Ld16(ref X, u); var y = Ld16(ref Y, u); var z = Ld16(ref Z, u);
+                var free = ~Vector512.Equals(Ld16(ref M, u), zero);
+                var rl = Ld16(ref Ln, u);
+                var rx = Ld16(ref Rx, u); var ry = Ld16(ref Ry, u); var rz = Ld16(ref Rz, u);
                 var ex = x - px; var ey = y - py; var ez = z - pz;
                 var len2 = Fma(ez, ez, Fma(ey, ey, ex * ex));
                 var len = Vector512.Sqrt(len2);
@@ -66,7 +79,7 @@ public sealed partial class FastBendSystem
                 var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
                 // Target: the rest direction turned by the frame carried from the root, worked out at the end of the
                 // row above (see below).
-                var tx = Ld16(ref s, Stx * lanes + h); var ty = Ld16(ref s, Sty * lanes + h); var tz = Ld16(ref s, Stz * lanes + h);
+                var tx = Ld16(ref sh, Stx * lanes); var ty = Ld16(ref sh, Sty * lanes); var tz = Ld16(ref sh, Stz * lanes);
                 // A rest direction to turn (any component non-zero, by bits: no multiplies).
                 var restOk = ~Vector512.Equals((rx.AsUInt32() | ry.AsUInt32() | rz.AsUInt32()) & Vector512.Create(0x7fffffffu), Vector512<uint>.Zero).AsSingle();
                 if (!AllSet(restOk))
@@ -79,9 +92,9 @@ public sealed partial class FastBendSystem
                 V dx = ux0, dy = uy0, dz = uz0;
                 if (!AllSet(okLen)) { dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz); }
                 // How far this segment turned since the substep's start (see BendSystem).
-                var ux = Fms(Vector512.Create(p.H), Ld16(ref d, p.Ovx + r), Fma(Vector512.Create(p.H), Ld16(ref d, p.Ovx + r - lanes), Ld16(ref s, SDx * lanes + h)));
-                var uy = Fms(Vector512.Create(p.H), Ld16(ref d, p.Ovy + r), Fma(Vector512.Create(p.H), Ld16(ref d, p.Ovy + r - lanes), Ld16(ref s, SDy * lanes + h)));
-                var uz = Fms(Vector512.Create(p.H), Ld16(ref d, p.Ovz + r), Fma(Vector512.Create(p.H), Ld16(ref d, p.Ovz + r - lanes), Ld16(ref s, SDz * lanes + h)));
+                var ux = Fms(Vector512.Create(p.H), Ld16(ref Vx, u), Fma(Vector512.Create(p.H), Ld16(ref Vx, up), Ld16(ref sh, SDx * lanes)));
+                var uy = Fms(Vector512.Create(p.H), Ld16(ref Vy, u), Fma(Vector512.Create(p.H), Ld16(ref Vy, up), Ld16(ref sh, SDy * lanes)));
+                var uz = Fms(Vector512.Create(p.H), Ld16(ref Vz, u), Fma(Vector512.Create(p.H), Ld16(ref Vz, up), Ld16(ref sh, SDz * lanes)));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 bool allFree = AllSet(free), noneFree = free == V.Zero;
@@ -99,10 +112,10 @@ public sealed partial class FastBendSystem
                         tcx = Sel16(byE, tcx, Fnma(al, dx, ux) * inv); tcy = Sel16(byE, tcy, Fnma(al, dy, uy) * inv); tcz = Sel16(byE, tcz, Fnma(al, dz, uz) * inv);
                     }
                     // Target turned with the parent: Δt = w_p × t.
-                    var wx = Ld16(ref s, Swx * lanes + h); var wy = Ld16(ref s, Swy * lanes + h); var wz = Ld16(ref s, Swz * lanes + h);
+                    var wx = Ld16(ref sh, Swx * lanes); var wy = Ld16(ref sh, Swy * lanes); var wz = Ld16(ref sh, Swz * lanes);
                     var ttx = Fms(wy, tz, wz * ty); var tty = Fms(wz, tx, wx * tz); var ttz = Fms(wx, ty, wy * tx);
                     // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
-                    var a = Ld16(ref rest, p.Oa + r); var b = Ld16(ref rest, p.Ob + r);
+                    var a = Ld16(ref A, u); var b = Ld16(ref B, u);
                     var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
                     var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
                     mx = Fma(b, sx, Fma(a, ox, tx)); my = Fma(b, sy, Fma(a, oy, ty)); mz = Fma(b, sz, Fma(a, oz, tz));
@@ -126,18 +139,18 @@ public sealed partial class FastBendSystem
                     if (!allFree) { cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
                 }
                 x += cdx; y += cdy; z += cdz;
-                St16(ref d, p.Ox + r, x); St16(ref d, p.Oy + r, y); St16(ref d, p.Oz + r, z);
+                St16(ref X, u, x); St16(ref Y, u, y); St16(ref Z, u, z);
                 // The row above takes its kick now that this row's correction is known.
-                Kick16(ref d, in p, r - lanes, k == 1 ? zero : ~Vector512.Equals(Ld16(ref d, p.Om + r - lanes), zero),
-                    Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h),
+                Kick16(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? zero : ~Vector512.Equals(Ld16(ref M, up), zero),
+                    Ld16(ref sh, SDx * lanes), Ld16(ref sh, SDy * lanes), Ld16(ref sh, SDz * lanes),
                     cdx + (allFree ? Vector512.Create(p.FallX) : Sel16(free, Vector512.Create(p.FallX), zero)), cdy + (allFree ? Vector512.Create(p.FallY) : Sel16(free, Vector512.Create(p.FallY), zero)),
                     cdz + (allFree ? Vector512.Create(p.FallZ) : Sel16(free, Vector512.Create(p.FallZ), zero)));
-                St16(ref s, SDx * lanes + h, cdx); St16(ref s, SDy * lanes + h, cdy); St16(ref s, SDz * lanes + h, cdz);
+                St16(ref sh, SDx * lanes, cdx); St16(ref sh, SDy * lanes, cdy); St16(ref sh, SDz * lanes, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
                 // As the child's parent turn: w = d × c = (d × u)/len.
-                St16(ref s, Swx * lanes + h, Fms(dy, uz, dz * uy) * inv); St16(ref s, Swy * lanes + h, Fms(dz, ux, dx * uz) * inv);
-                St16(ref s, Swz * lanes + h, Fms(dx, uy, dy * ux) * inv);
+                St16(ref sh, Swx * lanes, Fms(dy, uz, dz * uy) * inv); St16(ref sh, Swy * lanes, Fms(dz, ux, dx * uz) * inv);
+                St16(ref sh, Swz * lanes, Fms(dx, uy, dy * ux) * inv);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
                 // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised (below).
                 V gx = dx, gy = dy, gz = dz, gl = one;
@@ -152,7 +165,7 @@ public sealed partial class FastBendSystem
                 var flip = Vector512.LessThan(dot, Vector512.Create(-0.9999f) * gl);
                 if (flip != V.Zero) { fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw); }
                 var invF2 = one / Fma(fw, fw, Fma(fz, fz, Fma(fy, fy, fx * fx)));
-                var qx = Ld16(ref s, Sqx * lanes + h); var qy = Ld16(ref s, Sqy * lanes + h); var qz = Ld16(ref s, Sqz * lanes + h); var qw = Ld16(ref s, Sqw * lanes + h);
+                var qx = Ld16(ref sh, Sqx * lanes); var qy = Ld16(ref sh, Sqy * lanes); var qz = Ld16(ref sh, Sqz * lanes); var qw = Ld16(ref sh, Sqw * lanes);
                 // The frame so far, Q = f∘q, left unnormalised (|Q|² = |f|² as q is a unit quaternion): the next target,
                 // this row's next rest direction turned by Q, is r + (2/|Q|²)(Q_w (Q×r) + Q×(Q×r)) with 1/|f|² from above,
                 // so it waits for no square root; q for the next row is Q scaled to unit length, off that chain.
@@ -162,24 +175,26 @@ public sealed partial class FastBendSystem
                 var fqw = Fnma(fz, qz, Fnma(fy, qy, Fnma(fx, qx, fw * qw)));
                 if (k + 1 < rows)
                 {
-                    int rn = r + lanes;
-                    var nx1 = Ld16(ref rest, p.Orx + rn); var ny1 = Ld16(ref rest, p.Ory + rn); var nz1 = Ld16(ref rest, p.Orz + rn);
+                    var nx1 = Ld16(ref Rx, un); var ny1 = Ld16(ref Ry, un); var nz1 = Ld16(ref Rz, un);
                     var cx1 = Fms(fqy, nz1, fqz * ny1); var cy1 = Fms(fqz, nx1, fqx * nz1); var cz1 = Fms(fqx, ny1, fqy * nx1);
                     var gx1 = Fnma(fqz, cy1, Fma(fqy, cz1, fqw * cx1)); var gy1 = Fnma(fqx, cz1, Fma(fqz, cx1, fqw * cy1));
                     var gz1 = Fnma(fqy, cx1, Fma(fqx, cy1, fqw * cz1));
                     var twice = invF2 + invF2;
-                    St16(ref s, Stx * lanes + h, Fma(gx1, twice, nx1)); St16(ref s, Sty * lanes + h, Fma(gy1, twice, ny1));
-                    St16(ref s, Stz * lanes + h, Fma(gz1, twice, nz1));
+                    St16(ref sh, Stx * lanes, Fma(gx1, twice, nx1)); St16(ref sh, Sty * lanes, Fma(gy1, twice, ny1));
+                    St16(ref sh, Stz * lanes, Fma(gz1, twice, nz1));
                 }
                 var fInv = Vector512.Sqrt(invF2);
-                St16(ref s, Sqx * lanes + h, fqx * fInv); St16(ref s, Sqy * lanes + h, fqy * fInv);
-                St16(ref s, Sqz * lanes + h, fqz * fInv); St16(ref s, Sqw * lanes + h, fqw * fInv);
+                St16(ref sh, Sqx * lanes, fqx * fInv); St16(ref sh, Sqy * lanes, fqy * fInv);
+                St16(ref sh, Sqz * lanes, fqz * fInv); St16(ref sh, Sqw * lanes, fqw * fInv);
             }
         }
         if (rows < 2) return;
         for (int h = 0; h < lanes; h += width)
-            Kick16(ref d, in p, (rows - 1) * lanes + h, ~Vector512.Equals(Ld16(ref d, p.Om + (rows - 1) * lanes + h), zero),
-                Ld16(ref s, SDx * lanes + h), Ld16(ref s, SDy * lanes + h), Ld16(ref s, SDz * lanes + h), zero, zero, zero);
+        {
+            ref float sh = ref Unsafe.Add(ref s, h);
+            Kick16(ref Vx, ref Vy, ref Vz, in p, (nuint)((rows - 1) * lanes + h), ~Vector512.Equals(Ld16(ref M, (nuint)((rows - 1) * lanes + h)), zero),
+                Ld16(ref sh, SDx * lanes), Ld16(ref sh, SDy * lanes), Ld16(ref sh, SDz * lanes), zero, zero, zero);
+        }
     }
 
     /// <summary>
@@ -196,9 +211,9 @@ public sealed partial class FastBendSystem
 
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Kick16(ref float d, in SweepParams p, int r, V free, V dx, V dy, V dz, V nx, V ny, V nz)
+    private static void Kick16(ref float Vx, ref float Vy, ref float Vz, in SweepParams p, nuint r, V free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
-        var vx = Ld16(ref d, p.Ovx + r); var vy = Ld16(ref d, p.Ovy + r); var vz = Ld16(ref d, p.Ovz + r);
+        var vx = Ld16(ref Vx, r); var vy = Ld16(ref Vy, r); var vz = Ld16(ref Vz, r);
         var wx = Fma(Fnma(Vector512.Create(p.Reaction), nx, dx), Vector512.Create(p.InvH), vx); var wy = Fma(Fnma(Vector512.Create(p.Reaction), ny, dy), Vector512.Create(p.InvH), vy); var wz = Fma(Fnma(Vector512.Create(p.Reaction), nz, dz), Vector512.Create(p.InvH), vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
         var speedSq = Fma(wz, wz, Fma(wy, wy, wx * wx));
@@ -209,9 +224,9 @@ public sealed partial class FastBendSystem
             wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
         }
         if (!AllSet(free)) { wx = Sel16(free, wx, vx); wy = Sel16(free, wy, vy); wz = Sel16(free, wz, vz); }
-        St16(ref d, p.Ovx + r, wx);
-        St16(ref d, p.Ovy + r, wy);
-        St16(ref d, p.Ovz + r, wz);
+        St16(ref Vx, r, wx);
+        St16(ref Vy, r, wy);
+        St16(ref Vz, r, wz);
     }
 
     // a·b + c, c − a·b and a·b − c, each rounded once (Simd.MulAdd): the sweep is bound by its operation count.
@@ -233,6 +248,12 @@ public sealed partial class FastBendSystem
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void St16(ref float r, int i, V v) => v.StoreUnsafe(ref r, (nuint)i);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static V Ld16(ref float r, nuint i) => Vector512.LoadUnsafe(ref r, i);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void St16(ref float r, nuint i, V v) => v.StoreUnsafe(ref r, i);
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static V Sel16(V mask, V ifTrue, V ifFalse) => Vector512.ConditionalSelect(mask, ifTrue, ifFalse);
