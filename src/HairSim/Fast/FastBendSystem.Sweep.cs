@@ -1,3 +1,4 @@
+using System.Diagnostics;
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using V = System.Numerics.Vector<float>;
@@ -32,33 +33,43 @@ public sealed partial class FastBendSystem
     [SkipLocalsInit]
     private static void Sweep(ref float d, ref float rest, int rows, in SweepParams p)
     {
-        int width = V.Count, lanes = p.Lanes;
+        // Two chains of Vector<float>.Count lanes (a JIT-time constant), so the chain state sits at constant offsets.
+        int width = V.Count, lanes = 2 * V.Count;
+        Debug.Assert(p.Lanes == lanes);
         var one = V.One;
         var zero = V.Zero;
         Span<float> stateSpan = stackalloc float[Slots * lanes];
         ref float s = ref stateSpan[0];
+        // Each field's row 0, rows addressed by a native-sized index (as in Sweep16).
+        ref float X = ref Unsafe.Add(ref d, p.Ox), Y = ref Unsafe.Add(ref d, p.Oy), Z = ref Unsafe.Add(ref d, p.Oz);
+        ref float Vx = ref Unsafe.Add(ref d, p.Ovx), Vy = ref Unsafe.Add(ref d, p.Ovy), Vz = ref Unsafe.Add(ref d, p.Ovz);
+        ref float M = ref Unsafe.Add(ref d, p.Om), Ln = ref Unsafe.Add(ref d, p.Ol);
+        ref float Rx = ref Unsafe.Add(ref rest, p.Orx), Ry = ref Unsafe.Add(ref rest, p.Ory), Rz = ref Unsafe.Add(ref rest, p.Orz);
+        ref float A = ref Unsafe.Add(ref rest, p.Oa), B = ref Unsafe.Add(ref rest, p.Ob);
         for (int h = 0; h < lanes; h += width)
         {
-            Simd.St(ref s, Sqx * lanes + h, new V(p.Qx)); Simd.St(ref s, Sqy * lanes + h, new V(p.Qy));
-            Simd.St(ref s, Sqz * lanes + h, new V(p.Qz)); Simd.St(ref s, Sqw * lanes + h, new V(p.Qw));
+            ref float sh = ref Unsafe.Add(ref s, h);
+            Simd.St(ref sh, Sqx * lanes, new V(p.Qx)); Simd.St(ref sh, Sqy * lanes, new V(p.Qy));
+            Simd.St(ref sh, Sqz * lanes, new V(p.Qz)); Simd.St(ref sh, Sqw * lanes, new V(p.Qw));
             // Direction, turn and correction start at zero. The root is never kicked: it follows the head.
-            for (int slot = Swx; slot < Stx; slot++) Simd.St(ref s, slot * lanes + h, zero);
+            for (int slot = Swx; slot < Stx; slot++) Simd.St(ref sh, slot * lanes, zero);
             if (rows < 2) continue;
             // Segment 1's target: its rest direction turned by the head.
             Turn(new V(p.Qx), new V(p.Qy), new V(p.Qz), new V(p.Qw),
                 Simd.Ld(ref rest, p.Orx + lanes + h), Simd.Ld(ref rest, p.Ory + lanes + h), Simd.Ld(ref rest, p.Orz + lanes + h), out var tx1, out var ty1, out var tz1);
-            Simd.St(ref s, Stx * lanes + h, tx1); Simd.St(ref s, Sty * lanes + h, ty1); Simd.St(ref s, Stz * lanes + h, tz1);
+            Simd.St(ref sh, Stx * lanes, tx1); Simd.St(ref sh, Sty * lanes, ty1); Simd.St(ref sh, Stz * lanes, tz1);
         }
         for (int k = 1; k < rows; k++)
         {
             for (int h = 0; h < lanes; h += width)
             {
-                int r = k * lanes + h;
-                var px = Simd.Ld(ref d, p.Ox + r - lanes); var py = Simd.Ld(ref d, p.Oy + r - lanes); var pz = Simd.Ld(ref d, p.Oz + r - lanes);
-                var x = Simd.Ld(ref d, p.Ox + r); var y = Simd.Ld(ref d, p.Oy + r); var z = Simd.Ld(ref d, p.Oz + r);
-                var free = ~Vector.Equals(Simd.Ld(ref d, p.Om + r), zero);
-                var rl = Simd.Ld(ref d, p.Ol + r);
-                var rx = Simd.Ld(ref rest, p.Orx + r); var ry = Simd.Ld(ref rest, p.Ory + r); var rz = Simd.Ld(ref rest, p.Orz + r);
+                nuint u = (nuint)(k * lanes + h), up = u - (nuint)lanes, un = u + (nuint)lanes;
+                ref float sh = ref Unsafe.Add(ref s, h);
+                var px = Ld(ref X, up); var py = Ld(ref Y, up); var pz = Ld(ref Z, up);
+                var x = Ld(ref X, u); var y = Ld(ref Y, u); var z = Ld(ref Z, u);
+                var free = ~Vector.Equals(Ld(ref M, u), zero);
+                var rl = Ld(ref Ln, u);
+                var rx = Ld(ref Rx, u); var ry = Ld(ref Ry, u); var rz = Ld(ref Rz, u);
                 var ex = x - px; var ey = y - py; var ez = z - pz;
                 var len2 = Simd.MulAdd(ez, ez, Simd.MulAdd(ey, ey, ex * ex));
                 var len = Vector.SquareRoot(len2);
@@ -71,7 +82,7 @@ public sealed partial class FastBendSystem
                 var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
                 // Target: the rest direction turned by the frame carried from the root, worked out at the end of the
                 // row above (see below).
-                var tx = Simd.Ld(ref s, Stx * lanes + h); var ty = Simd.Ld(ref s, Sty * lanes + h); var tz = Simd.Ld(ref s, Stz * lanes + h);
+                var tx = Simd.Ld(ref sh, Stx * lanes); var ty = Simd.Ld(ref sh, Sty * lanes); var tz = Simd.Ld(ref sh, Stz * lanes);
                 // A rest direction to turn (any component non-zero, by bits: no multiplies).
                 var restOk = ~Vector.AsVectorInt32(Vector.Equals((Vector.AsVectorUInt32(rx) | Vector.AsVectorUInt32(ry) | Vector.AsVectorUInt32(rz)) & new Vector<uint>(0x7fffffffu), Vector<uint>.Zero));
                 tx = Simd.Sel(restOk, tx, Simd.Sel(hasLen, ux0, zero));
@@ -80,9 +91,9 @@ public sealed partial class FastBendSystem
                 var okLen = Vector.GreaterThan(len, new V(1e-6f) * rl) & hasLen;
                 var dx = Simd.Sel(okLen, ux0, tx); var dy = Simd.Sel(okLen, uy0, ty); var dz = Simd.Sel(okLen, uz0, tz);
                 // How far this segment turned since the substep's start (see BendSystem).
-                var ux = Simd.MulSub(new V(p.H), Simd.Ld(ref d, p.Ovx + r), Simd.MulAdd(new V(p.H), Simd.Ld(ref d, p.Ovx + r - lanes), Simd.Ld(ref s, SDx * lanes + h)));
-                var uy = Simd.MulSub(new V(p.H), Simd.Ld(ref d, p.Ovy + r), Simd.MulAdd(new V(p.H), Simd.Ld(ref d, p.Ovy + r - lanes), Simd.Ld(ref s, SDy * lanes + h)));
-                var uz = Simd.MulSub(new V(p.H), Simd.Ld(ref d, p.Ovz + r), Simd.MulAdd(new V(p.H), Simd.Ld(ref d, p.Ovz + r - lanes), Simd.Ld(ref s, SDz * lanes + h)));
+                var ux = Simd.MulSub(new V(p.H), Ld(ref Vx, u), Simd.MulAdd(new V(p.H), Ld(ref Vx, up), Simd.Ld(ref sh, SDx * lanes)));
+                var uy = Simd.MulSub(new V(p.H), Ld(ref Vy, u), Simd.MulAdd(new V(p.H), Ld(ref Vy, up), Simd.Ld(ref sh, SDy * lanes)));
+                var uz = Simd.MulSub(new V(p.H), Ld(ref Vz, u), Simd.MulAdd(new V(p.H), Ld(ref Vz, up), Simd.Ld(ref sh, SDz * lanes)));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 V mx = zero, my = zero, mz = zero, ml = zero, cdx = zero, cdy = zero, cdz = zero;
@@ -97,10 +108,10 @@ public sealed partial class FastBendSystem
                     var tcy = Simd.Sel(byE, Simd.NegMulAdd(ue, ey, uy) * inv, Simd.NegMulAdd(al, dy, uy) * inv);
                     var tcz = Simd.Sel(byE, Simd.NegMulAdd(ue, ez, uz) * inv, Simd.NegMulAdd(al, dz, uz) * inv);
                     // Target turned with the parent: Δt = w_p × t.
-                    var wx = Simd.Ld(ref s, Swx * lanes + h); var wy = Simd.Ld(ref s, Swy * lanes + h); var wz = Simd.Ld(ref s, Swz * lanes + h);
+                    var wx = Simd.Ld(ref sh, Swx * lanes); var wy = Simd.Ld(ref sh, Swy * lanes); var wz = Simd.Ld(ref sh, Swz * lanes);
                     var ttx = Simd.MulSub(wy, tz, wz * ty); var tty = Simd.MulSub(wz, tx, wx * tz); var ttz = Simd.MulSub(wx, ty, wy * tx);
                     // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
-                    var a = Simd.Ld(ref rest, p.Oa + r); var b = Simd.Ld(ref rest, p.Ob + r);
+                    var a = Ld(ref A, u); var b = Ld(ref B, u);
                     var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
                     var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
                     mx = Simd.MulAdd(b, sx, Simd.MulAdd(a, ox, tx)); my = Simd.MulAdd(b, sy, Simd.MulAdd(a, oy, ty)); mz = Simd.MulAdd(b, sz, Simd.MulAdd(a, oz, tz));
@@ -115,17 +126,17 @@ public sealed partial class FastBendSystem
                     cdx = Simd.Sel(free, nx - x, zero); cdy = Simd.Sel(free, ny - y, zero); cdz = Simd.Sel(free, nz - z, zero);
                 }
                 x += cdx; y += cdy; z += cdz;
-                Simd.St(ref d, p.Ox + r, x); Simd.St(ref d, p.Oy + r, y); Simd.St(ref d, p.Oz + r, z);
+                St(ref X, u, x); St(ref Y, u, y); St(ref Z, u, z);
                 // The row above takes its kick now that this row's correction is known.
-                Kick(ref d, in p, r - lanes, k == 1 ? Vector<int>.Zero : ~Vector.Equals(Simd.Ld(ref d, p.Om + r - lanes), zero),
-                    Simd.Ld(ref s, SDx * lanes + h), Simd.Ld(ref s, SDy * lanes + h), Simd.Ld(ref s, SDz * lanes + h),
+                Kick(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? Vector<int>.Zero : ~Vector.Equals(Ld(ref M, up), zero),
+                    Simd.Ld(ref sh, SDx * lanes), Simd.Ld(ref sh, SDy * lanes), Simd.Ld(ref sh, SDz * lanes),
                     cdx + Simd.Sel(free, new V(p.FallX), zero), cdy + Simd.Sel(free, new V(p.FallY), zero), cdz + Simd.Sel(free, new V(p.FallZ), zero));
-                Simd.St(ref s, SDx * lanes + h, cdx); Simd.St(ref s, SDy * lanes + h, cdy); Simd.St(ref s, SDz * lanes + h, cdz);
+                Simd.St(ref sh, SDx * lanes, cdx); Simd.St(ref sh, SDy * lanes, cdy); Simd.St(ref sh, SDz * lanes, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
                 // As the child's parent turn: w = d × c = (d × u)/len.
-                Simd.St(ref s, Swx * lanes + h, Simd.MulSub(dy, uz, dz * uy) * inv); Simd.St(ref s, Swy * lanes + h, Simd.MulSub(dz, ux, dx * uz) * inv);
-                Simd.St(ref s, Swz * lanes + h, Simd.MulSub(dx, uy, dy * ux) * inv);
+                Simd.St(ref sh, Swx * lanes, Simd.MulSub(dy, uz, dz * uy) * inv); Simd.St(ref sh, Swy * lanes, Simd.MulSub(dz, ux, dx * uz) * inv);
+                Simd.St(ref sh, Swz * lanes, Simd.MulSub(dx, uy, dy * ux) * inv);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
                 // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised (below).
                 var byM = free & mOk;
@@ -135,7 +146,7 @@ public sealed partial class FastBendSystem
                 var flip = Vector.LessThan(dot, new V(-0.9999f) * gl);
                 fx = Simd.Sel(flip, zero, fx); fy = Simd.Sel(flip, zero, fy); fz = Simd.Sel(flip, zero, fz); fw = Simd.Sel(flip, one, fw);
                 var invF2 = one / Simd.MulAdd(fw, fw, Simd.MulAdd(fz, fz, Simd.MulAdd(fy, fy, fx * fx)));
-                var qx = Simd.Ld(ref s, Sqx * lanes + h); var qy = Simd.Ld(ref s, Sqy * lanes + h); var qz = Simd.Ld(ref s, Sqz * lanes + h); var qw = Simd.Ld(ref s, Sqw * lanes + h);
+                var qx = Simd.Ld(ref sh, Sqx * lanes); var qy = Simd.Ld(ref sh, Sqy * lanes); var qz = Simd.Ld(ref sh, Sqz * lanes); var qw = Simd.Ld(ref sh, Sqw * lanes);
                 // The frame so far, Q = f∘q, left unnormalised (|Q|² = |f|² as q is a unit quaternion): the next target,
                 // this row's next rest direction turned by Q, is r + (2/|Q|²)(Q_w (Q×r) + Q×(Q×r)) with 1/|f|² from above,
                 // so it waits for no square root; q for the next row is Q scaled to unit length, off that chain.
@@ -145,24 +156,26 @@ public sealed partial class FastBendSystem
                 var fqw = Simd.NegMulAdd(fz, qz, Simd.NegMulAdd(fy, qy, Simd.NegMulAdd(fx, qx, fw * qw)));
                 if (k + 1 < rows)
                 {
-                    int rn = r + lanes;
-                    var nx1 = Simd.Ld(ref rest, p.Orx + rn); var ny1 = Simd.Ld(ref rest, p.Ory + rn); var nz1 = Simd.Ld(ref rest, p.Orz + rn);
+                    var nx1 = Ld(ref Rx, un); var ny1 = Ld(ref Ry, un); var nz1 = Ld(ref Rz, un);
                     var cx1 = Simd.MulSub(fqy, nz1, fqz * ny1); var cy1 = Simd.MulSub(fqz, nx1, fqx * nz1); var cz1 = Simd.MulSub(fqx, ny1, fqy * nx1);
                     var gx1 = Simd.NegMulAdd(fqz, cy1, Simd.MulAdd(fqy, cz1, fqw * cx1)); var gy1 = Simd.NegMulAdd(fqx, cz1, Simd.MulAdd(fqz, cx1, fqw * cy1));
                     var gz1 = Simd.NegMulAdd(fqy, cx1, Simd.MulAdd(fqx, cy1, fqw * cz1));
                     var twice = invF2 + invF2;
-                    Simd.St(ref s, Stx * lanes + h, Simd.MulAdd(gx1, twice, nx1)); Simd.St(ref s, Sty * lanes + h, Simd.MulAdd(gy1, twice, ny1));
-                    Simd.St(ref s, Stz * lanes + h, Simd.MulAdd(gz1, twice, nz1));
+                    Simd.St(ref sh, Stx * lanes, Simd.MulAdd(gx1, twice, nx1)); Simd.St(ref sh, Sty * lanes, Simd.MulAdd(gy1, twice, ny1));
+                    Simd.St(ref sh, Stz * lanes, Simd.MulAdd(gz1, twice, nz1));
                 }
                 var fInv = Vector.SquareRoot(invF2);
-                Simd.St(ref s, Sqx * lanes + h, fqx * fInv); Simd.St(ref s, Sqy * lanes + h, fqy * fInv);
-                Simd.St(ref s, Sqz * lanes + h, fqz * fInv); Simd.St(ref s, Sqw * lanes + h, fqw * fInv);
+                Simd.St(ref sh, Sqx * lanes, fqx * fInv); Simd.St(ref sh, Sqy * lanes, fqy * fInv);
+                Simd.St(ref sh, Sqz * lanes, fqz * fInv); Simd.St(ref sh, Sqw * lanes, fqw * fInv);
             }
         }
         if (rows < 2) return;
         for (int h = 0; h < lanes; h += width)
-            Kick(ref d, in p, (rows - 1) * lanes + h, ~Vector.Equals(Simd.Ld(ref d, p.Om + (rows - 1) * lanes + h), zero),
-                Simd.Ld(ref s, SDx * lanes + h), Simd.Ld(ref s, SDy * lanes + h), Simd.Ld(ref s, SDz * lanes + h), zero, zero, zero);
+        {
+            ref float sh = ref Unsafe.Add(ref s, h);
+            Kick(ref Vx, ref Vy, ref Vz, in p, (nuint)((rows - 1) * lanes + h), ~Vector.Equals(Ld(ref M, (nuint)((rows - 1) * lanes + h)), zero),
+                Simd.Ld(ref sh, SDx * lanes), Simd.Ld(ref sh, SDy * lanes), Simd.Ld(ref sh, SDz * lanes), zero, zero, zero);
+        }
     }
 
     /// <summary>
@@ -179,9 +192,9 @@ public sealed partial class FastBendSystem
 
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r, then clamped to the speed limit (the sweep writes velocities last).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Kick(ref float d, in SweepParams p, int r, Vector<int> free, V dx, V dy, V dz, V nx, V ny, V nz)
+    private static void Kick(ref float Vx, ref float Vy, ref float Vz, in SweepParams p, nuint r, Vector<int> free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
-        var vx = Simd.Ld(ref d, p.Ovx + r); var vy = Simd.Ld(ref d, p.Ovy + r); var vz = Simd.Ld(ref d, p.Ovz + r);
+        var vx = Ld(ref Vx, r); var vy = Ld(ref Vy, r); var vz = Ld(ref Vz, r);
         var wx = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nx, dx), new V(p.InvH), vx); var wy = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), ny, dy), new V(p.InvH), vy);
         var wz = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nz, dz), new V(p.InvH), vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
@@ -192,8 +205,14 @@ public sealed partial class FastBendSystem
             var f = new V(p.MaxSpeed) / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
             wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
         }
-        Simd.St(ref d, p.Ovx + r, Simd.Sel(free, wx, vx));
-        Simd.St(ref d, p.Ovy + r, Simd.Sel(free, wy, vy));
-        Simd.St(ref d, p.Ovz + r, Simd.Sel(free, wz, vz));
+        St(ref Vx, r, Simd.Sel(free, wx, vx));
+        St(ref Vy, r, Simd.Sel(free, wy, vy));
+        St(ref Vz, r, Simd.Sel(free, wz, vz));
     }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static V Ld(ref float r, nuint i) => Unsafe.ReadUnaligned<V>(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)));
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void St(ref float r, nuint i, V v) => Unsafe.WriteUnaligned(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)), v);
 }
