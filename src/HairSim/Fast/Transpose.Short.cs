@@ -1,4 +1,6 @@
+using System.Diagnostics;
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using System.Runtime.Intrinsics;
 using System.Runtime.Intrinsics.X86;
 
@@ -10,7 +12,9 @@ namespace HairSim.Fast;
 /// (lane l takes float l·h + k), about h² operations for h rows instead of a full 16 × 16 transpose of 16 rows of
 /// which h are used. Stores go the other way and write the 16·h floats exactly, with no spill into the next strands.
 /// Timed against the 16 × 16 transposes in one process: 3- and 4-particle frames faster; at 6 and 8 particles slower
-/// (more permutes, and tables for those heights that crowd L1), hence the limit of 4.
+/// (more permutes, and tables for those heights that crowd L1), hence the limit of 4. The sources stay in registers and
+/// the tables are read without bounds checks: a loop over source pairs held in an inline array on the stack made 2- to
+/// 4-particle frames clearly slower (interleaved).
 /// </summary>
 internal static partial class Transpose
 {
@@ -53,44 +57,40 @@ internal static partial class Transpose
     [MethodImpl(MethodImplOptions.NoInlining)]
     public static void InShort(ref float strands, int h, ref float tile, int lanes)
     {
-        var v = new Sources();
-        for (int i = 0; i < h; i++) v[i] = Ld16(ref strands, 16 * i);
-        v[h] = Vector512<float>.Zero;
-        int pairs = (h + 1) / 2;
+        // Each row is picked from the first pair of sources and, for h > 2, blended with its pick from the second (a
+        // zero vector stands in past the last source).
+        Debug.Assert(h >= 2 && h <= MaxShort);
+        var v0 = Ld16(ref strands, 0); var v1 = Ld16(ref strands, 16);
+        var v2 = h > 2 ? Ld16(ref strands, 32) : Vector512<float>.Zero;
+        var v3 = h > 3 ? Ld16(ref strands, 48) : Vector512<float>.Zero;
+        ref int index = ref MemoryMarshal.GetArrayDataReference(ShortTables.LoadIndex);
+        ref float mask = ref MemoryMarshal.GetArrayDataReference(ShortTables.LoadMask);
         for (int k = 0; k < h; k++)
-            St16(ref tile, k * lanes, Pick(in v, pairs, Slot(h, k, 0) * 16, ShortTables.LoadIndex, ShortTables.LoadMask));
+            St16(ref tile, k * lanes, Pick2(v0, v1, v2, v3, h > 2, Slot(h, k, 0) * 16, ref index, ref mask));
     }
 
     /// <summary>The inverse of <see cref="InShort"/>: rows 0 … h − 1 of 16 tile columns back into 16·h consecutive floats.</summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
     public static void OutShort(ref float tile, int lanes, ref float strands, int h)
     {
-        var v = new Sources();
-        for (int k = 0; k < h; k++) v[k] = Ld16(ref tile, k * lanes);
-        v[h] = Vector512<float>.Zero;
-        int pairs = (h + 1) / 2;
+        Debug.Assert(h >= 2 && h <= MaxShort);
+        var v0 = Ld16(ref tile, 0); var v1 = Ld16(ref tile, lanes);
+        var v2 = h > 2 ? Ld16(ref tile, 2 * lanes) : Vector512<float>.Zero;
+        var v3 = h > 3 ? Ld16(ref tile, 3 * lanes) : Vector512<float>.Zero;
+        ref int index = ref MemoryMarshal.GetArrayDataReference(ShortTables.StoreIndex);
+        ref float mask = ref MemoryMarshal.GetArrayDataReference(ShortTables.StoreMask);
         for (int j = 0; j < h; j++)
-            St16(ref strands, 16 * j, Pick(in v, pairs, Slot(h, j, 0) * 16, ShortTables.StoreIndex, ShortTables.StoreMask));
+            St16(ref strands, 16 * j, Pick2(v0, v1, v2, v3, h > 2, Slot(h, j, 0) * 16, ref index, ref mask));
     }
 
-    /// <summary>One vector picked out of the sources, pair by pair, with the indices and lanes of the slots from <paramref name="slot"/>.</summary>
+    /// <summary>One vector picked from the source pairs (v0, v1) and, where <paramref name="second"/>, (v2, v3).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static Vector512<float> Pick(in Sources v, int pairs, int slot, int[] index, float[] mask)
+    private static Vector512<float> Pick2(Vector512<float> v0, Vector512<float> v1, Vector512<float> v2, Vector512<float> v3, bool second, int slot,
+        ref int index, ref float mask)
     {
-        var picked = Avx512F.PermuteVar16x32x2(v[0], Vector512.LoadUnsafe(ref index[slot]), v[1]);
-        for (int p = 1; p < pairs; p++)
-        {
-            slot += 16;
-            var part = Avx512F.PermuteVar16x32x2(v[2 * p], Vector512.LoadUnsafe(ref index[slot]), v[2 * p + 1]);
-            picked = Vector512.ConditionalSelect(Vector512.LoadUnsafe(ref mask[slot]), part, picked);
-        }
-        return picked;
-    }
-
-    /// <summary>Up to MaxShort source vectors and a zero one past the last (the odd height's second source).</summary>
-    [InlineArray(MaxShort + 1)]
-    private struct Sources
-    {
-        private Vector512<float> _v;
+        var picked = Avx512F.PermuteVar16x32x2(v0, Vector512.LoadUnsafe(ref index, (nuint)slot), v1);
+        if (!second) return picked;
+        var part = Avx512F.PermuteVar16x32x2(v2, Vector512.LoadUnsafe(ref index, (nuint)(slot + 16)), v3);
+        return Vector512.ConditionalSelect(Vector512.LoadUnsafe(ref mask, (nuint)(slot + 16)), part, picked);
     }
 }
