@@ -188,19 +188,19 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         }
     }
 
-    // This frame's rigid carry and each substep's pin kernel, built once for all chunks.
+    // This frame's rigid carry and each substep's head pose on 16 lanes, built once for all chunks.
     private PoseLanes _chunkCarry;
-    private PinKernel[] _chunkPins = [];
+    private PoseLanes16[] _chunkPins16 = [];
 
     bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {
         _chunkCarry = new PoseLanes(ctx.TeleportDelta);
-        if (_chunkPins.Length < ctx.Substeps) _chunkPins = new PinKernel[ctx.Substeps];
-        for (int s = 0; s < ctx.Substeps; s++) _chunkPins[s] = new PinKernel(new PoseLanes(ctx.HeadAt(s)));
+        if (_chunkPins16.Length < ctx.Substeps) _chunkPins16 = new PoseLanes16[ctx.Substeps];
+        for (int s = 0; s < ctx.Substeps; s++) _chunkPins16[s] = new PoseLanes16(new PoseLanes(ctx.HeadAt(s)));
         return true;
     }
 
-    /// <summary>As <see cref="Run"/> on a chunk: the rigid carry on a teleport, then the rows that hold pins, 8 lanes at a time as <see cref="PinKernel"/>.</summary>
+    /// <summary>As <see cref="Run"/> on a chunk: the rigid carry on a teleport, then the rows that hold pins, 16 lanes at a time with <see cref="PinKernel"/>'s arithmetic.</summary>
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         int width = Vector<float>.Count;
@@ -218,16 +218,28 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
             }
         }
         if (chunk.PinnedRows == 0) return true;
-        ref readonly var kernel = ref _chunkPins[substep];
+        // 16 lanes at a time, the PinKernel's arithmetic (PoseLanes16: the same, in the same order).
+        ref readonly var head = ref _chunkPins16[substep];
+        ref float x0 = ref chunk.Row(StrandChunk.X, 0), y0 = ref chunk.Row(StrandChunk.Y, 0), z0 = ref chunk.Row(StrandChunk.Z, 0);
+        ref float vx0 = ref chunk.Row(StrandChunk.VelX, 0), vy0 = ref chunk.Row(StrandChunk.VelY, 0), vz0 = ref chunk.Row(StrandChunk.VelZ, 0);
+        ref float m0 = ref chunk.Row(StrandChunk.InvMass, 0);
+        ref float rx0 = ref chunk.Row(StrandChunk.RestX, 0), ry0 = ref chunk.Row(StrandChunk.RestY, 0), rz0 = ref chunk.Row(StrandChunk.RestZ, 0);
+        var zero = Vector512<float>.Zero;
         for (ulong rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
         {
-            int k = BitOperations.TrailingZeroCount(rows);
-            for (int l = 0; l < StrandChunk.Lanes; l += width)
-                kernel.Chunk(ref Unsafe.Add(ref chunk.Row(StrandChunk.X, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.Y, k), l),
-                    ref Unsafe.Add(ref chunk.Row(StrandChunk.Z, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.VelX, k), l),
-                    ref Unsafe.Add(ref chunk.Row(StrandChunk.VelY, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.VelZ, k), l),
-                    ref Unsafe.Add(ref chunk.Row(StrandChunk.InvMass, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.RestX, k), l),
-                    ref Unsafe.Add(ref chunk.Row(StrandChunk.RestY, k), l), ref Unsafe.Add(ref chunk.Row(StrandChunk.RestZ, k), l));
+            nuint row = (nuint)(BitOperations.TrailingZeroCount(rows) * StrandChunk.Lanes);
+            for (nuint o = row; o < row + StrandChunk.Lanes; o += 16)
+            {
+                var pinned = Vector512.Equals(Vector512.LoadUnsafe(ref m0, o), zero);
+                if (pinned == zero) continue;
+                head.Point(Vector512.LoadUnsafe(ref rx0, o), Vector512.LoadUnsafe(ref ry0, o), Vector512.LoadUnsafe(ref rz0, o), out var gx, out var gy, out var gz);
+                Vector512.ConditionalSelect(pinned, gx, Vector512.LoadUnsafe(ref x0, o)).StoreUnsafe(ref x0, o);
+                Vector512.ConditionalSelect(pinned, gy, Vector512.LoadUnsafe(ref y0, o)).StoreUnsafe(ref y0, o);
+                Vector512.ConditionalSelect(pinned, gz, Vector512.LoadUnsafe(ref z0, o)).StoreUnsafe(ref z0, o);
+                Vector512.ConditionalSelect(pinned, zero, Vector512.LoadUnsafe(ref vx0, o)).StoreUnsafe(ref vx0, o);
+                Vector512.ConditionalSelect(pinned, zero, Vector512.LoadUnsafe(ref vy0, o)).StoreUnsafe(ref vy0, o);
+                Vector512.ConditionalSelect(pinned, zero, Vector512.LoadUnsafe(ref vz0, o)).StoreUnsafe(ref vz0, o);
+            }
         }
         return true;
     }
