@@ -7,7 +7,7 @@ namespace HairSim.Fast;
 
 /// <summary>
 /// The sweep over a tile of two Vector&lt;float&gt; chains per row. The sweep is latency-bound (each row waits for
-/// the last row's position and frame: square roots, divisions, two quaternion normalisations), so two independent
+/// the last row's position and frame: square roots and divisions), so two independent
 /// vectors of strands advance side by side. The row is written once, in the sweep's own loop: as a helper it was
 /// too large for the JIT to inline, and a call per row kept every chain's state in memory behind references.
 /// </summary>

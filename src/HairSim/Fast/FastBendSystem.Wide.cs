@@ -18,7 +18,7 @@ public sealed partial class FastBendSystem
     /// <see cref="Sweep"/> on 16-lane vectors. The constants are broadcast where they are used
     /// (<c>Vector512.Create(p.H)</c>): the JIT folds each into its instruction as an embedded broadcast from memory, so
     /// none holds one of the 32 vector registers; held in a struct of vectors they pushed the row's own values onto
-    /// the stack (twice the spills, and a 7–10 % slower frame interleaved).
+    /// the stack (twice the spills, and a clearly slower frame).
     /// </summary>
     [SkipLocalsInit]
     private static void Sweep16(ref float d, ref float rest, int rows, in SweepParams p)
