@@ -90,6 +90,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     /// The rest positions of the chunk's pinned particles, into the rest rows of the rows that hold pins: from the
     /// per-strand pin cache (the world's rest arrays are not touched), else from the world.
     /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
     {
         bool rowsCached = _cache && _cachedAt.Length == w.StrandCount && _pinRows.Length == 3 * w.ParticleCount;
@@ -201,6 +202,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     }
 
     /// <summary>As <see cref="Run"/> on a chunk: the rigid carry on a teleport, then the rows that hold pins, 16 lanes at a time with <see cref="PinKernel"/>'s arithmetic.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         int width = Vector<float>.Count;

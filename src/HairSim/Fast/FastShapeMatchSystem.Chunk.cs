@@ -26,6 +26,7 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
     }
 
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         var st = ctx.Settings;

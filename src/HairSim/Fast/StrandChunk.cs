@@ -142,6 +142,9 @@ internal interface IStrandChunkSystem
     /// <summary>
     /// Substep <paramref name="substep"/> on the chunk. False: nothing was changed, and this system cannot handle
     /// the chunk now (e.g. coinciding particles); the runner then finishes the chunk's frame through <see cref="IHairSystem.Run"/>.
+    /// Implementations (and the transposes) are marked <c>AggressiveOptimization</c>: under tiered compilation they ran
+    /// as unoptimised code through the first second of a scene, and those frames missed a 60 Hz budget (the main job's
+    /// frame statistics); the runner itself stays tiered, so profile-guided optimisation still sees its calls.
     /// </summary>
     bool RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk);
 }

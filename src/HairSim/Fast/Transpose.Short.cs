@@ -54,7 +54,7 @@ internal static partial class Transpose
     private static int Slot(int h, int k, int p) => (h * MaxShort + k) * (MaxShort / 2) + p;
 
     /// <summary>16 strands of <paramref name="h"/> particles (16·h floats from <paramref name="strands"/>) into rows 0 … h − 1 of 16 tile columns.</summary>
-    [MethodImpl(MethodImplOptions.NoInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     public static void InShort(ref float strands, int h, ref float tile, int lanes)
     {
         // Each row is picked from the first pair of sources and, for h > 2, blended with its pick from the second (a
@@ -70,7 +70,7 @@ internal static partial class Transpose
     }
 
     /// <summary>The inverse of <see cref="InShort"/>: rows 0 … h − 1 of 16 tile columns back into 16·h consecutive floats.</summary>
-    [MethodImpl(MethodImplOptions.NoInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     public static void OutShort(ref float tile, int lanes, ref float strands, int h)
     {
         Debug.Assert(h >= 2 && h <= MaxShort);

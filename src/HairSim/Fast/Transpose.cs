@@ -20,7 +20,7 @@ internal static partial class Transpose
     /// A separate, non-inlined method with constant strides: the JIT folds every row address into the load or
     /// store, and the four transposes are inlined against this method's own inlining budget, not the caller's.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     public static void In16(ref float strands, ref float tile, int lanes)
     {
         Block8(ref strands, 16, ref tile, lanes);
@@ -36,7 +36,7 @@ internal static partial class Transpose
     public static void In16Wide(ref float strands, ref float tile, int lanes) => In16Strided(ref strands, 16, ref tile, lanes);
 
     /// <summary>The inverse of <see cref="In16Wide"/>; with <paramref name="add"/> the tile is added to the strands.</summary>
-    [MethodImpl(MethodImplOptions.NoInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     public static void Out16Wide(ref float tile, int lanes, ref float strands, bool add)
     {
         Block16(ref tile, lanes, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
@@ -52,7 +52,7 @@ internal static partial class Transpose
     /// 16 floats are read from each strand's start, so rows past the capacity hold the next strand's particles (the
     /// caller masks them) and the caller must leave 16 − stride floats readable past the last strand.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     public static void In16Strided(ref float strands, int stride, ref float tile, int lanes)
     {
         Block16(ref strands, stride, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
@@ -68,7 +68,7 @@ internal static partial class Transpose
     /// order, so what spills into strand i + 1 is overwritten by strand i + 1's own store; the rest only their first
     /// <paramref name="width"/> floats (the caller sets <paramref name="whole"/> so that no store reaches past its strands).
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     public static void Out16Strided(ref float tile, int lanes, ref float strands, int stride, int whole, int width)
     {
         Block16(ref tile, lanes, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
