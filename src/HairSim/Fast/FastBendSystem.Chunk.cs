@@ -47,7 +47,6 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
     /// <summary>Bumped whenever a strand's cached rest data or shares change (FillCache, CacheShares).</summary>
     private long _cacheGeneration;
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
     {
         if (!_chunkActive) return;
@@ -88,7 +87,6 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         return _chunkActive && s0 < _chunkBlock.Length && _chunkBlock[s0] == s0 ? _chunkBend : null;
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         if (!_chunkActive) return true;

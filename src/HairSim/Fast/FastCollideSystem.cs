@@ -67,7 +67,6 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
         return true;
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         var colliders = ctx.CollidersAt(substep);

@@ -46,7 +46,6 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
         return true;
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         chunk.ForEachCell(ref _chunkKernel);

@@ -29,7 +29,6 @@ public sealed partial class FastLengthSystem : IStrandChunkSystem
     /// The sweep on a chunk, whose first slots are this system's tile fields: no gather or scatter, only the velocity
     /// kicks added to the chunk's velocities (as <see cref="Scatter"/> adds them to the world's).
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         var st = ctx.Settings;

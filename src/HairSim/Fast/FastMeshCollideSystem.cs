@@ -54,7 +54,6 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         return true;
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     unsafe bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         bool mine = ReferenceEquals(scene, _scene);

@@ -32,7 +32,6 @@ public sealed class FastSegmentCollideSystem : IHairSystem, IStrandChunkSystem
     bool IStrandChunkSystem.SupportsChunks => FastPathInfo.Avx512;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         var colliders = ctx.CollidersAt(substep);

@@ -26,7 +26,6 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
     }
 
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         var st = ctx.Settings;

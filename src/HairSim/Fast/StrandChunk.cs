@@ -142,9 +142,10 @@ internal interface IStrandChunkSystem
     /// <summary>
     /// Substep <paramref name="substep"/> on the chunk. False: nothing was changed, and this system cannot handle
     /// the chunk now (e.g. coinciding particles); the runner then finishes the chunk's frame through <see cref="IHairSystem.Run"/>.
-    /// Implementations (and the transposes) are marked <c>AggressiveOptimization</c>: under tiered compilation they ran
-    /// as unoptimised code through the first second of a scene, and those frames missed a 60 Hz budget (the main job's
-    /// frame statistics); the runner itself stays tiered, so profile-guided optimisation still sees its calls.
+    /// (The chunk loads and stores and head follow's pinned rows are compiled optimised from their first call,
+    /// <c>AggressiveOptimization</c>: under tiered compilation they ran as unoptimised code through the first second of a
+    /// scene. Marking every system's RunChunk as well removed the rest of those slow first frames, but the steady frames
+    /// read a few per cent slower in two bench runs, the profile-guided optimisation of those methods being lost.)
     /// </summary>
     bool RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk);
 }
