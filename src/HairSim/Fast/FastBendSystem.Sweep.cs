@@ -65,11 +65,11 @@ public sealed partial class FastBendSystem
             {
                 nuint u = (nuint)(k * lanes + h), up = u - (nuint)lanes, un = u + (nuint)lanes;
                 ref float sh = ref Unsafe.Add(ref s, h);
-                var px = Ld(ref X, up); var py = Ld(ref Y, up); var pz = Ld(ref Z, up);
-                var x = Ld(ref X, u); var y = Ld(ref Y, u); var z = Ld(ref Z, u);
-                var free = ~Vector.Equals(Ld(ref M, u), zero);
-                var rl = Ld(ref Ln, u);
-                var rx = Ld(ref Rx, u); var ry = Ld(ref Ry, u); var rz = Ld(ref Rz, u);
+                var px = Simd.Ld(ref X, up); var py = Simd.Ld(ref Y, up); var pz = Simd.Ld(ref Z, up);
+                var x = Simd.Ld(ref X, u); var y = Simd.Ld(ref Y, u); var z = Simd.Ld(ref Z, u);
+                var free = ~Vector.Equals(Simd.Ld(ref M, u), zero);
+                var rl = Simd.Ld(ref Ln, u);
+                var rx = Simd.Ld(ref Rx, u); var ry = Simd.Ld(ref Ry, u); var rz = Simd.Ld(ref Rz, u);
                 var ex = x - px; var ey = y - py; var ez = z - pz;
                 var len2 = Simd.MulAdd(ez, ez, Simd.MulAdd(ey, ey, ex * ex));
                 var len = Vector.SquareRoot(len2);
@@ -91,9 +91,9 @@ public sealed partial class FastBendSystem
                 var okLen = Vector.GreaterThan(len, new V(1e-6f) * rl) & hasLen;
                 var dx = Simd.Sel(okLen, ux0, tx); var dy = Simd.Sel(okLen, uy0, ty); var dz = Simd.Sel(okLen, uz0, tz);
                 // How far this segment turned since the substep's start (see BendSystem).
-                var ux = Simd.MulSub(new V(p.H), Ld(ref Vx, u), Simd.MulAdd(new V(p.H), Ld(ref Vx, up), Simd.Ld(ref sh, SDx * lanes)));
-                var uy = Simd.MulSub(new V(p.H), Ld(ref Vy, u), Simd.MulAdd(new V(p.H), Ld(ref Vy, up), Simd.Ld(ref sh, SDy * lanes)));
-                var uz = Simd.MulSub(new V(p.H), Ld(ref Vz, u), Simd.MulAdd(new V(p.H), Ld(ref Vz, up), Simd.Ld(ref sh, SDz * lanes)));
+                var ux = Simd.MulSub(new V(p.H), Simd.Ld(ref Vx, u), Simd.MulAdd(new V(p.H), Simd.Ld(ref Vx, up), Simd.Ld(ref sh, SDx * lanes)));
+                var uy = Simd.MulSub(new V(p.H), Simd.Ld(ref Vy, u), Simd.MulAdd(new V(p.H), Simd.Ld(ref Vy, up), Simd.Ld(ref sh, SDy * lanes)));
+                var uz = Simd.MulSub(new V(p.H), Simd.Ld(ref Vz, u), Simd.MulAdd(new V(p.H), Simd.Ld(ref Vz, up), Simd.Ld(ref sh, SDz * lanes)));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 V mx = zero, my = zero, mz = zero, ml = zero, cdx = zero, cdy = zero, cdz = zero;
@@ -111,7 +111,7 @@ public sealed partial class FastBendSystem
                     var wx = Simd.Ld(ref sh, Swx * lanes); var wy = Simd.Ld(ref sh, Swy * lanes); var wz = Simd.Ld(ref sh, Swz * lanes);
                     var ttx = Simd.MulSub(wy, tz, wz * ty); var tty = Simd.MulSub(wz, tx, wx * tz); var ttz = Simd.MulSub(wx, ty, wy * tx);
                     // The joint's spring and dashpot shares, cached per strand for this h (see CacheShares).
-                    var a = Ld(ref A, u); var b = Ld(ref B, u);
+                    var a = Simd.Ld(ref A, u); var b = Simd.Ld(ref B, u);
                     var ox = dx - tx; var oy = dy - ty; var oz = dz - tz;
                     var sx = ox - (tcx - ttx); var sy = oy - (tcy - tty); var sz = oz - (tcz - ttz);
                     mx = Simd.MulAdd(b, sx, Simd.MulAdd(a, ox, tx)); my = Simd.MulAdd(b, sy, Simd.MulAdd(a, oy, ty)); mz = Simd.MulAdd(b, sz, Simd.MulAdd(a, oz, tz));
@@ -126,9 +126,9 @@ public sealed partial class FastBendSystem
                     cdx = Simd.Sel(free, nx - x, zero); cdy = Simd.Sel(free, ny - y, zero); cdz = Simd.Sel(free, nz - z, zero);
                 }
                 x += cdx; y += cdy; z += cdz;
-                St(ref X, u, x); St(ref Y, u, y); St(ref Z, u, z);
+                Simd.St(ref X, u, x); Simd.St(ref Y, u, y); Simd.St(ref Z, u, z);
                 // The row above takes its kick now that this row's correction is known.
-                Kick(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? Vector<int>.Zero : ~Vector.Equals(Ld(ref M, up), zero),
+                Kick(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? Vector<int>.Zero : ~Vector.Equals(Simd.Ld(ref M, up), zero),
                     Simd.Ld(ref sh, SDx * lanes), Simd.Ld(ref sh, SDy * lanes), Simd.Ld(ref sh, SDz * lanes),
                     cdx + Simd.Sel(free, new V(p.FallX), zero), cdy + Simd.Sel(free, new V(p.FallY), zero), cdz + Simd.Sel(free, new V(p.FallZ), zero));
                 Simd.St(ref sh, SDx * lanes, cdx); Simd.St(ref sh, SDy * lanes, cdy); Simd.St(ref sh, SDz * lanes, cdz);
@@ -156,7 +156,7 @@ public sealed partial class FastBendSystem
                 var fqw = Simd.NegMulAdd(fz, qz, Simd.NegMulAdd(fy, qy, Simd.NegMulAdd(fx, qx, fw * qw)));
                 if (k + 1 < rows)
                 {
-                    var nx1 = Ld(ref Rx, un); var ny1 = Ld(ref Ry, un); var nz1 = Ld(ref Rz, un);
+                    var nx1 = Simd.Ld(ref Rx, un); var ny1 = Simd.Ld(ref Ry, un); var nz1 = Simd.Ld(ref Rz, un);
                     var cx1 = Simd.MulSub(fqy, nz1, fqz * ny1); var cy1 = Simd.MulSub(fqz, nx1, fqx * nz1); var cz1 = Simd.MulSub(fqx, ny1, fqy * nx1);
                     var gx1 = Simd.NegMulAdd(fqz, cy1, Simd.MulAdd(fqy, cz1, fqw * cx1)); var gy1 = Simd.NegMulAdd(fqx, cz1, Simd.MulAdd(fqz, cx1, fqw * cy1));
                     var gz1 = Simd.NegMulAdd(fqy, cx1, Simd.MulAdd(fqx, cy1, fqw * cz1));
@@ -173,7 +173,7 @@ public sealed partial class FastBendSystem
         for (int h = 0; h < lanes; h += width)
         {
             ref float sh = ref Unsafe.Add(ref s, h);
-            Kick(ref Vx, ref Vy, ref Vz, in p, (nuint)((rows - 1) * lanes + h), ~Vector.Equals(Ld(ref M, (nuint)((rows - 1) * lanes + h)), zero),
+            Kick(ref Vx, ref Vy, ref Vz, in p, (nuint)((rows - 1) * lanes + h), ~Vector.Equals(Simd.Ld(ref M, (nuint)((rows - 1) * lanes + h)), zero),
                 Simd.Ld(ref sh, SDx * lanes), Simd.Ld(ref sh, SDy * lanes), Simd.Ld(ref sh, SDz * lanes), zero, zero, zero);
         }
     }
@@ -194,7 +194,7 @@ public sealed partial class FastBendSystem
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Kick(ref float Vx, ref float Vy, ref float Vz, in SweepParams p, nuint r, Vector<int> free, V dx, V dy, V dz, V nx, V ny, V nz)
     {
-        var vx = Ld(ref Vx, r); var vy = Ld(ref Vy, r); var vz = Ld(ref Vz, r);
+        var vx = Simd.Ld(ref Vx, r); var vy = Simd.Ld(ref Vy, r); var vz = Simd.Ld(ref Vz, r);
         var wx = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nx, dx), new V(p.InvH), vx); var wy = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), ny, dy), new V(p.InvH), vy);
         var wz = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nz, dz), new V(p.InvH), vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
@@ -205,14 +205,8 @@ public sealed partial class FastBendSystem
             var f = new V(p.MaxSpeed) / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
             wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
         }
-        St(ref Vx, r, Simd.Sel(free, wx, vx));
-        St(ref Vy, r, Simd.Sel(free, wy, vy));
-        St(ref Vz, r, Simd.Sel(free, wz, vz));
+        Simd.St(ref Vx, r, Simd.Sel(free, wx, vx));
+        Simd.St(ref Vy, r, Simd.Sel(free, wy, vy));
+        Simd.St(ref Vz, r, Simd.Sel(free, wz, vz));
     }
-
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static V Ld(ref float r, nuint i) => Unsafe.ReadUnaligned<V>(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)));
-
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void St(ref float r, nuint i, V v) => Unsafe.WriteUnaligned(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)), v);
 }

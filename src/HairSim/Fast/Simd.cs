@@ -35,6 +35,15 @@ internal static class Simd
     public static void St(ref float r, int i, Vector<float> v) =>
         Unsafe.WriteUnaligned(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)), v);
 
+    /// <summary>As <see cref="Ld(ref float, int)"/> with a native-sized index (no sign extension in a hot loop's addressing).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static Vector<float> Ld(ref float r, nuint i) =>
+        Unsafe.ReadUnaligned<Vector<float>>(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)));
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void St(ref float r, nuint i, Vector<float> v) =>
+        Unsafe.WriteUnaligned(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref r, i)), v);
+
     /// <summary>
     /// 1/√x for x &gt; 0: the hardware estimate (12 bits) refined by one Newton step (≈ 23 bits, an ulp or two,
     /// about the rounding of a sqrt and a divide together), much cheaper than both; exact sqrt + divide elsewhere.

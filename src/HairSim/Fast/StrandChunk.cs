@@ -142,10 +142,7 @@ internal interface IStrandChunkSystem
     /// <summary>
     /// Substep <paramref name="substep"/> on the chunk. False: nothing was changed, and this system cannot handle
     /// the chunk now (e.g. coinciding particles); the runner then finishes the chunk's frame through <see cref="IHairSystem.Run"/>.
-    /// (The chunk loads and stores and head follow's pinned rows are compiled optimised from their first call,
-    /// <c>AggressiveOptimization</c>: under tiered compilation they ran as unoptimised code through the first second of a
-    /// scene. Marking every system's RunChunk as well removed the rest of those slow first frames, but the steady frames
-    /// read a few per cent slower in two bench runs, the profile-guided optimisation of those methods being lost.)
+    /// Implementations stay under tiered compilation (see <see cref="Transpose"/> on <c>AggressiveOptimization</c>).
     /// </summary>
     bool RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk);
 }
@@ -399,7 +396,7 @@ internal sealed class StrandChunkRunner
         // Short strands' loads fill only their own rows: the rows past them in the loaded fields start at zero (the
         // stack tile is not cleared), so they hold finite values, as the 16 × 16 transposes leave them (later chunks
         // leave their own finite values there). Systems read only a chunk's own rows; this keeps stray reads harmless.
-        if (height <= Transpose.MaxShort && Transpose.ShortAvailable)
+        if (Transpose.TakesShort(height))
             foreach (int f in (ReadOnlySpan<int>)[StrandChunk.X, StrandChunk.Y, StrandChunk.Z, StrandChunk.VelX, StrandChunk.VelY, StrandChunk.VelZ,
                 StrandChunk.InvMass, StrandChunk.RestLength, StrandChunk.ShapePrev, StrandChunk.ShapeMid, StrandChunk.ShapeNext])
                 tile.Data.Slice(tile.Offset(f) + height * StrandChunk.Lanes, (tileRows - height) * StrandChunk.Lanes).Clear();
@@ -436,7 +433,7 @@ internal sealed class StrandChunkRunner
             Transpose.In16Wide(ref Unsafe.Add(ref s, 16 * StrandChunk.Rows), ref Unsafe.Add(ref row0, 16), L);
             return;
         }
-        if (height <= Transpose.MaxShort && Transpose.ShortAvailable)
+        if (Transpose.TakesShort(height))
         {
             // Short strands: rows 0 … height − 1 picked out of the chunk's own floats (rows past them keep what they held).
             Transpose.InShort(ref s, height, ref row0, L);
@@ -468,7 +465,7 @@ internal sealed class StrandChunkRunner
     private static void Store(scoped StrandScratch tile, int field, float[] dst, int first, int height)
     {
         ref float row0 = ref tile.Data[tile.Offset(field)];
-        if (height <= Transpose.MaxShort && Transpose.ShortAvailable)
+        if (Transpose.TakesShort(height))
         {
             // Short strands: the chunk's 32 · height floats written exactly.
             ref float to = ref Simd.At(dst, first);

@@ -23,6 +23,9 @@ internal static partial class Transpose
 
     public static bool ShortAvailable => Avx512F.IsSupported;
 
+    /// <summary>Whether strands of <paramref name="height"/> particles load and store through the short transposes.</summary>
+    public static bool TakesShort(int height) => height <= MaxShort && ShortAvailable;
+
     // Per height h, row k and source pair p (vectors 2p, 2p + 1): the permute's indices and the lanes it supplies.
     // Loads: lane l of row k takes float q = l·h + k, from pair q / 32 at index q mod 32.
     // Stores: float e of output vector j is particle k = (16j + e) mod h of strand l = (16j + e) / h, from pair k / 2.

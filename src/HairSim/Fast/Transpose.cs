@@ -9,6 +9,10 @@ namespace HairSim.Fast;
 /// contiguous per strand) into a tile where row k holds particle k of each strand, and back. About 24 shuffles per
 /// 64 floats instead of 64 scalar loads and stores. With AVX-512, 16 strands of 16 particles are transposed as one
 /// 16 × 16 block in registers (<see cref="In16Wide"/>, <see cref="Out16Wide"/>).
+/// The chunk transposes (and head follow's pinned rows on chunks) are compiled optimised from their first call
+/// (<c>AggressiveOptimization</c>): under tiered compilation they ran as unoptimised code through a scene's first
+/// second, whose frames then missed a 60 Hz budget. The systems' RunChunk methods are left tiered: marked as well, the
+/// steady frames read a few per cent slower, their profile-guided optimisation lost.
 /// </summary>
 internal static partial class Transpose
 {
