@@ -64,6 +64,19 @@ public sealed class HairPipeline
     /// </summary>
     public bool UseStrandChunks { get; set; } = true;
 
+    /// <summary>
+    /// On chunks, the bend sweep integrates each row just before it sweeps it, in place of the integration's own pass
+    /// (default on; the same bits). Exists to measure and test the two against each other.
+    /// </summary>
+    internal bool FuseChunkIntegration
+    {
+        get => _chunks?.FuseIntegration ?? false;
+        set { if (_chunks != null) _chunks.FuseIntegration = value; }
+    }
+
+    /// <summary>Whether the last frame ran on chunks with the integration taken into the bend sweep (<see cref="FuseChunkIntegration"/>).</summary>
+    internal bool LastFrameIntegratedInSweep => _chunkFrame && _chunks!.IntegratesInSweep;
+
     /// <summary>Whether frames take the chunked path: <see cref="UseStrandChunks"/>, the fast path on AVX-512, and every substep system able to run on chunks.</summary>
     public bool UsesStrandChunks => UseStrandChunks && _chunks != null;
 
@@ -289,13 +302,14 @@ public sealed class HairPipeline
             long groups = (n + L - 1) / L;
             begin = (int)Math.Min(n, L * (groups * job / _jobCount));
             end = (int)Math.Min(n, L * (groups * (job + 1) / _jobCount));
-            _chunks!.Run(_scene, _ctx, begin, end);
+            // The runner scans each chunk's rows before storing them, and the other strands right after their steps.
+            _chunks!.Run(_scene, _ctx, begin, end, _containment);
+            return;
         }
-        else
-            for (int s = 0; s < _ctx.Substeps; s++)
-                for (int k = 0; k < _substep.Length; k++)
-                    _substep[k].Run(_scene, _ctx, s, begin, end);
-        // While the job's strands are still in this core's cache: a strand left non-finite goes back to its rest pose.
+        for (int s = 0; s < _ctx.Substeps; s++)
+            for (int k = 0; k < _substep.Length; k++)
+                _substep[k].Run(_scene, _ctx, s, begin, end);
+        // A strand left non-finite goes back to its rest pose.
         _containment.Scan(_scene.World, _ctx.HeadEnd, begin, end);
     }
 

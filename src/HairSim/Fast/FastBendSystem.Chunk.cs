@@ -17,6 +17,16 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
     /// <summary>The sweep fetches a share of the next chunk's data per half row (<see cref="Prefetcher.Row"/>).</summary>
     bool IStrandChunkSystem.SweepsRows => _chunkActive;
 
+    // This frame: the sweep integrates each row first, in place of FastIntegrateSystem's own pass (see FuseIntegrate).
+    private bool _fuseIntegrate;
+
+    /// <summary>
+    /// Called by the chunk runner after <see cref="IStrandChunkSystem.BeginChunkFrame"/> when <see cref="FastIntegrateSystem"/>
+    /// runs just before this system: whether this frame's chunk sweeps take its pass over (<see cref="Sweep16{TIntegrate}"/>),
+    /// so the runner skips it. Only while the sweep runs (the rest-shape model).
+    /// </summary>
+    internal bool FuseIntegrate(bool wanted) => _fuseIntegrate = wanted && _chunkActive;
+
     // This frame's settings, for PrepareChunk (which gets no context).
     private float _chunkSag, _chunkH, _chunkZeta;
     private bool _chunkActive;
@@ -46,6 +56,13 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
     private readonly float[] _checkedSag, _checkedH, _checkedZeta;
     /// <summary>Bumped whenever a strand's cached rest data or shares change (FillCache, CacheShares).</summary>
     private long _cacheGeneration;
+
+    void IStrandChunkSystem.PrefetchChunkState(int s0)
+    {
+        if (!_chunkActive) return;
+        Prefetcher.First(_checkedGeneration, s0); Prefetcher.First(_checkedStamp, s0); Prefetcher.First(_checkedSag, s0);
+        Prefetcher.First(_checkedH, s0); Prefetcher.First(_checkedZeta, s0); Prefetcher.Ends(_chunkBlock, s0);
+    }
 
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
     {
@@ -97,7 +114,9 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
             t.Offset(StrandChunk.VelX), t.Offset(StrandChunk.VelY), t.Offset(StrandChunk.VelZ),
             t.Offset(StrandChunk.InvMass), t.Offset(StrandChunk.RestLength),
             0, cells, 2 * cells, 3 * cells, 4 * cells, chunk.Prefetch);
-        Sweep16(ref t.Data[0], ref _chunkBend[ChunkBendFields * chunk.Firsts[0]], chunk.Height, in p);
+        ref float rest = ref _chunkBend[ChunkBendFields * chunk.Firsts[0]];
+        if (_fuseIntegrate) Sweep16<Fused>(ref t.Data[0], ref rest, chunk.Height, in p);
+        else Sweep16<Apart>(ref t.Data[0], ref rest, chunk.Height, in p);
         return true;
     }
 }

@@ -21,7 +21,16 @@ public sealed partial class FastBendSystem
     /// the stack (twice the spills, and a clearly slower frame).
     /// </summary>
     [SkipLocalsInit]
-    private static void Sweep16(ref float d, ref float rest, int rows, in SweepParams p)
+    private static void Sweep16(ref float d, ref float rest, int rows, in SweepParams p) => Sweep16<Apart>(ref d, ref rest, rows, in p);
+
+    /// <summary>
+    /// <see cref="Sweep16"/>; with <typeparamref name="TIntegrate"/> = <see cref="Fused"/> each row is first stepped as
+    /// <see cref="FastIntegrateSystem"/> steps it (gravity, damping, speed limit, x += h·v; the same operations in the
+    /// same order), in registers just before the sweep reads it: one pass over the chunk's rows per substep instead of
+    /// two. No row's sweep reads a later row's position or velocity, so the bits are those of the two passes.
+    /// </summary>
+    [SkipLocalsInit]
+    private static void Sweep16<TIntegrate>(ref float d, ref float rest, int rows, in SweepParams p) where TIntegrate : struct
     {
         // The 16-lane sweep always runs two chains of 16 (a chunk's 32 strands, or a tile of 32): the state slots then sit
         // at constant offsets from each chain's base.
@@ -41,6 +50,14 @@ public sealed partial class FastBendSystem
         for (int h = 0; h < lanes; h += width)
         {
             ref float sh = ref Unsafe.Add(ref s, h);
+            if (typeof(TIntegrate) == typeof(Fused))
+            {
+                // The root row (pins, which integration leaves as they are, unless a lane holds a free root).
+                nuint r0 = (nuint)h;
+                var x0 = Ld16(ref X, r0); var y0 = Ld16(ref Y, r0); var z0 = Ld16(ref Z, r0);
+                Integrate16(ref Vx, ref Vy, ref Vz, r0, Vector512.Equals(Ld16(ref M, r0), zero), in p, ref x0, ref y0, ref z0, out _, out _, out _);
+                St16(ref X, r0, x0); St16(ref Y, r0, y0); St16(ref Z, r0, z0);
+            }
             St16(ref sh, Sqx * lanes, Vector512.Create(p.Qx)); St16(ref sh, Sqy * lanes, Vector512.Create(p.Qy));
             St16(ref sh, Sqz * lanes, Vector512.Create(p.Qz)); St16(ref sh, Sqw * lanes, Vector512.Create(p.Qw));
             // Direction, turn and correction start at zero. The root is never kicked: it follows the head.
@@ -61,7 +78,11 @@ public sealed partial class FastBendSystem
                 nuint u = (nuint)(k * lanes + h), up = u - (nuint)lanes, un = u + (nuint)lanes;
                 var px = Ld16(ref X, up); var py = Ld16(ref Y, up); var pz = Ld16(ref Z, up);
                 var x = Ld16(ref X, u); var y = Ld16(ref Y, u); var z = Ld16(ref Z, u);
-                var free = ~Vector512.Equals(Ld16(ref M, u), zero);
+                var pinned = Vector512.Equals(Ld16(ref M, u), zero);
+                var free = ~pinned;
+                V vux, vuy, vuz;
+                if (typeof(TIntegrate) == typeof(Fused)) Integrate16(ref Vx, ref Vy, ref Vz, u, pinned, in p, ref x, ref y, ref z, out vux, out vuy, out vuz);
+                else { vux = Ld16(ref Vx, u); vuy = Ld16(ref Vy, u); vuz = Ld16(ref Vz, u); }
                 var rl = Ld16(ref Ln, u);
                 var rx = Ld16(ref Rx, u); var ry = Ld16(ref Ry, u); var rz = Ld16(ref Rz, u);
                 var ex = x - px; var ey = y - py; var ez = z - pz;
@@ -92,9 +113,9 @@ public sealed partial class FastBendSystem
                 V dx = ux0, dy = uy0, dz = uz0;
                 if (!AllSet(okLen)) { dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz); }
                 // How far this segment turned since the substep's start (see BendSystem).
-                var ux = Fms(Vector512.Create(p.H), Ld16(ref Vx, u), Fma(Vector512.Create(p.H), Ld16(ref Vx, up), Ld16(ref sh, SDx * lanes)));
-                var uy = Fms(Vector512.Create(p.H), Ld16(ref Vy, u), Fma(Vector512.Create(p.H), Ld16(ref Vy, up), Ld16(ref sh, SDy * lanes)));
-                var uz = Fms(Vector512.Create(p.H), Ld16(ref Vz, u), Fma(Vector512.Create(p.H), Ld16(ref Vz, up), Ld16(ref sh, SDz * lanes)));
+                var ux = Fms(Vector512.Create(p.H), vux, Fma(Vector512.Create(p.H), Ld16(ref Vx, up), Ld16(ref sh, SDx * lanes)));
+                var uy = Fms(Vector512.Create(p.H), vuy, Fma(Vector512.Create(p.H), Ld16(ref Vy, up), Ld16(ref sh, SDy * lanes)));
+                var uz = Fms(Vector512.Create(p.H), vuz, Fma(Vector512.Create(p.H), Ld16(ref Vz, up), Ld16(ref sh, SDz * lanes)));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 bool allFree = AllSet(free), noneFree = free == V.Zero;
@@ -207,6 +228,31 @@ public sealed partial class FastBendSystem
         var cx = Fms(q2y, rz, q2z * ry); var cy = Fms(q2z, rx, q2x * rz); var cz = Fms(q2x, ry, q2y * rx);
         tx = Fnma(qz, cy, Fma(qy, cz, Fma(qw, cx, rx))); ty = Fnma(qx, cz, Fma(qz, cx, Fma(qw, cy, ry)));
         tz = Fnma(qy, cx, Fma(qx, cy, Fma(qw, cz, rz)));
+    }
+
+    /// <summary>
+    /// Row r as <see cref="FastIntegrateSystem"/>'s 16-lane kernel steps it (the same operations in the same order): its
+    /// velocity stored and returned, its position (x, y, z in) moved by h·v on the free lanes.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Integrate16(ref float Vx, ref float Vy, ref float Vz, nuint r, V pinned, in SweepParams p,
+        ref V x, ref V y, ref V z, out V vx, out V vy, out V vz)
+    {
+        var ox = Ld16(ref Vx, r); var oy = Ld16(ref Vy, r); var oz = Ld16(ref Vz, r);
+        var keep = Vector512.Create(p.Keep);
+        var nx = (ox + Vector512.Create(p.GravityStepX)) * keep; var ny = (oy + Vector512.Create(p.GravityStepY)) * keep;
+        var nz = (oz + Vector512.Create(p.GravityStepZ)) * keep;
+        var spSq = nx * nx + ny * ny + nz * nz;
+        var over = Vector512.GreaterThan(spSq, Vector512.Create(p.MaxSpeedSq));
+        if (over != V.Zero)
+        {
+            var f = Vector512.ConditionalSelect(over, Vector512.Create(p.MaxSpeed) / Vector512.Sqrt(spSq), V.One);
+            nx *= f; ny *= f; nz *= f;
+        }
+        vx = Sel16(pinned, ox, nx); vy = Sel16(pinned, oy, ny); vz = Sel16(pinned, oz, nz);
+        St16(ref Vx, r, vx); St16(ref Vy, r, vy); St16(ref Vz, r, vz);
+        var h = Vector512.Create(p.H);
+        x = Sel16(pinned, x, x + h * nx); y = Sel16(pinned, y, y + h * ny); z = Sel16(pinned, z, z + h * nz);
     }
 
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>

@@ -218,11 +218,18 @@ public sealed partial class FastBendSystem : IHairSystem
     /// Per-sweep constants and where each field's row 0 is: particle fields from one base, the cached rest fields
     /// (rest directions, joint shares) from another (the same tile here; a chunk keeps them apart). Rows are Lanes floats apart.
     /// </summary>
+    /// <summary><see cref="Sweep16{TIntegrate}"/>: the sweep alone.</summary>
+    private struct Apart { }
+    /// <summary><see cref="Sweep16{TIntegrate}"/>: each row integrated first (FastIntegrateSystem fused in).</summary>
+    private struct Fused { }
+
     private readonly struct SweepParams
     {
         public readonly float H, InvH, Reaction, FallX, FallY, FallZ;
         /// <summary>The speed limit (m/s) the kick clamps velocities to; +∞ when off.</summary>
         public readonly float MaxSpeed, MaxSpeedSq;
+        /// <summary>Integration's velocity keep per substep and gravity × h (for the sweep that integrates each row first, <see cref="Fused"/>).</summary>
+        public readonly float Keep, GravityStepX, GravityStepY, GravityStepZ;
         public readonly float Qx, Qy, Qz, Qw;
         public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Orx, Ory, Orz, Oa, Ob, Lanes;
         /// <summary>The chunk runner's prefetch of the next chunk, advanced once per row (0: none).</summary>
@@ -241,6 +248,9 @@ public sealed partial class FastBendSystem : IHairSystem
             H = h; InvH = 1f / h;
             Reaction = (float)BendSystem.ReactionShare;
             float kappa = MathF.Max(0f, 1f - st.Damping * h);
+            Keep = kappa;
+            var gravityStep = st.Gravity * h; // as FastIntegrateSystem builds it
+            GravityStepX = gravityStep.X; GravityStepY = gravityStep.Y; GravityStepZ = gravityStep.Z;
             FallX = st.Gravity.X * h * h * kappa; FallY = st.Gravity.Y * h * h * kappa; FallZ = st.Gravity.Z * h * h * kappa;
             MaxSpeed = st.MaxSpeed > 0f ? st.MaxSpeed : float.PositiveInfinity;
             MaxSpeedSq = MaxSpeed * MaxSpeed;

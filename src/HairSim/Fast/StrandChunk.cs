@@ -123,6 +123,13 @@ internal interface IStrandChunkSystem
     /// source's length sweep) keep cut strands on their ordinary path.
     /// </summary>
     bool TakesCutStrands => false;
+    /// <summary>
+    /// Fetches into cache the lines of per-strand state that <see cref="PrepareChunk"/> and <see cref="ChunkBlock"/> will
+    /// read for the chunk from s0 (<see cref="Prefetcher.Strands{T}"/>): the runner asks two chunks ahead. Each such
+    /// array is read a line or two per chunk, between the chunk fields that stream through the cache, so without this
+    /// every one of them missed in every chunk.
+    /// </summary>
+    void PrefetchChunkState(int s0) { }
     /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
     void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
     /// <summary>
@@ -161,10 +168,25 @@ internal sealed class StrandChunkRunner
     private readonly bool _takesCut;
     private bool _cutThisFrame;
 
+    /// <summary>
+    /// Whether the bend sweep integrates each row itself when <see cref="FastIntegrateSystem"/> runs just before it
+    /// (one pass over the chunk's rows per substep instead of two; the same bits). A switch for tests and measurement.
+    /// </summary>
+    public bool FuseIntegration { get; set; } = true;
+
+    /// <summary>Whether this frame's chunk sweeps integrate each row (<see cref="FuseIntegration"/>, and integration just before the active sweep).</summary>
+    public bool IntegratesInSweep => _fusedAway >= 0;
+    // The integration system followed by the bend sweep (indices into _chunkSystems), or −1; and this frame's system
+    // to skip because the sweep took its pass over (−1: none).
+    private readonly int _integrateAt = -1;
+    private int _fusedAway = -1;
+
     private StrandChunkRunner(IHairSystem[] systems, IStrandChunkSystem[] chunkSystems)
     {
         _systems = systems;
         _chunkSystems = chunkSystems;
+        for (int k = 0; k + 1 < chunkSystems.Length; k++)
+            if (chunkSystems[k] is FastIntegrateSystem && chunkSystems[k + 1] is FastBendSystem) _integrateAt = k;
         _takesCut = true;
         foreach (var c in chunkSystems) { _needs |= c.ChunkNeeds; _takesCut &= c.TakesCutStrands; }
     }
@@ -207,13 +229,14 @@ internal sealed class StrandChunkRunner
         foreach (var c in _chunkSystems) if (!c.BeginChunkFrame(ctx)) return false;
         _rowPaced = false;
         foreach (var c in _chunkSystems) _rowPaced |= c.SweepsRows;
+        _fusedAway = _integrateAt >= 0 && ((FastBendSystem)_chunkSystems[_integrateAt + 1]).FuseIntegrate(FuseIntegration) ? _integrateAt : -1;
         return true;
     }
 
     /// <summary>All substeps of strands [begin, end).</summary>
     // The stack tile is written before it is read (rows that must start as zero are cleared here).
     [SkipLocalsInit]
-    public void Run(HairScene scene, FrameContext ctx, int begin, int end)
+    public void Run(HairScene scene, FrameContext ctx, int begin, int end, NonFiniteContainment containment)
     {
         var w = scene.World;
         // As tall as the groom's longest strand needs (16 rows for the source's systems; up to 64 with the default ones):
@@ -233,15 +256,16 @@ internal sealed class StrandChunkRunner
                 s0 = next;
                 continue;
             }
-            if (ordinaryFrom < s0) RunOrdinary(scene, ctx, ordinaryFrom, s0, 0, 0);
+            if (ordinaryFrom < s0) RunOrdinaryAndScan(scene, ctx, ordinaryFrom, s0, containment);
+            PrefetchChunkState(w, s0 + 2 * StrandChunk.Lanes);
             if (!cleared) { ClearFixedRows(tile, tileRows, w.StrandCapacity[s0]); cleared = true; }
             for (int l = 0; l < StrandChunk.Lanes; l++) firsts[l] = w.StrandFirst[s0 + l];
             stepped++;
-            if (!RunChunk(scene, ctx, s0, tile, tileRows, firsts, pastCuts)) handedBack++;
+            if (!RunChunk(scene, ctx, s0, tile, tileRows, firsts, pastCuts, containment)) handedBack++;
             s0 += StrandChunk.Lanes;
             ordinaryFrom = s0;
         }
-        if (ordinaryFrom < end) RunOrdinary(scene, ctx, ordinaryFrom, end, 0, 0);
+        if (ordinaryFrom < end) RunOrdinaryAndScan(scene, ctx, ordinaryFrom, end, containment);
         if (stepped > 0) Interlocked.Add(ref _stepped, stepped);
         if (handedBack > 0) Interlocked.Add(ref _handedBack, handedBack);
     }
@@ -277,7 +301,8 @@ internal sealed class StrandChunkRunner
     }
 
     /// <summary>One chunk through all substeps; false if a system handed it back to the ordinary path midway.</summary>
-    private unsafe bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, int tileRows, ReadOnlySpan<int> firsts, Span<float> pastCuts)
+    private unsafe bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, int tileRows, ReadOnlySpan<int> firsts, Span<float> pastCuts,
+        NonFiniteContainment containment)
     {
         var w = scene.World;
         int first = firsts[0], height = w.StrandCapacity[s0];
@@ -302,15 +327,54 @@ internal sealed class StrandChunkRunner
         for (int s = 0; s < ctx.Substeps; s++)
             for (int k = 0; k < _chunkSystems.Length; k++)
             {
+                if (k == _fusedAway) continue; // the sweep after it integrates each row (FastBendSystem.FuseIntegrate)
                 if (_chunkSystems[k].RunChunk(scene, ctx, s, chunk)) { if (!_rowPaced) prefetch.Next(prefetch.PerCall); continue; }
                 if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tileRows, tile, pastCuts);
                 Store(tile, first, height, w);
                 RunOrdinary(scene, ctx, s0, s0 + StrandChunk.Lanes, s, k);
+                containment.Scan(w, ctx.HeadEnd, s0, s0 + StrandChunk.Lanes);
                 return false;
             }
         if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tileRows, tile, pastCuts);
         Store(tile, first, height, w);
+        // The frame's containment of non-finite values (NonFiniteContainment), on the rows just stored, still in L1:
+        // scanning the world's buffers after the job read them all from memory again.
+        if (!StoredRowsFinite(tile, height)) containment.ResetNonFinite(w, ctx.HeadEnd, s0, s0 + StrandChunk.Lanes);
         return true;
+    }
+
+    /// <summary>Whether the rows a chunk stores (every particle of its strands, past a cut too) hold only finite values.</summary>
+    private static bool StoredRowsFinite(scoped StrandScratch tile, int height)
+    {
+        // x − x is 0 for finite x and NaN for NaN and ±∞; a NaN stays NaN through the sums (as NonFiniteContainment.AllFinite).
+        var acc0 = Vector512<float>.Zero; var acc1 = Vector512<float>.Zero;
+        int cells = height * StrandChunk.Lanes;
+        foreach (int f in StoredFields)
+        {
+            ref float row = ref tile.Data[tile.Offset(f)];
+            for (int i = 0; i < cells; i += 32)
+            {
+                var a = Vector512.LoadUnsafe(ref row, (nuint)i); var b = Vector512.LoadUnsafe(ref row, (nuint)(i + 16));
+                acc0 += a - a; acc1 += b - b;
+            }
+        }
+        acc0 += acc1;
+        return Vector512.EqualsAll(acc0, acc0);
+    }
+
+    /// <summary>Strands [begin, end) through every substep system by system, then the containment's scan of them.</summary>
+    private void RunOrdinaryAndScan(HairScene scene, FrameContext ctx, int begin, int end, NonFiniteContainment containment)
+    {
+        RunOrdinary(scene, ctx, begin, end, 0, 0);
+        containment.Scan(scene.World, ctx.HeadEnd, begin, end);
+    }
+
+    /// <summary>The per-strand state the runner and every system read for the chunk from s0 (see <see cref="IStrandChunkSystem.PrefetchChunkState"/>).</summary>
+    private void PrefetchChunkState(HairWorld w, int s0)
+    {
+        Prefetcher.Strands(w.StrandFirst, s0); Prefetcher.First(w.StrandCapacity, s0); Prefetcher.Strands(w.StrandParticleCount, s0);
+        Prefetcher.First(_acceptedAt, s0);
+        foreach (var c in _chunkSystems) c.PrefetchChunkState(s0);
     }
 
     /// <summary>Position and velocity: what a chunk stores, so what must be put back past a cut.</summary>
@@ -580,6 +644,41 @@ internal unsafe struct Prefetcher
 
     /// <summary>Lines per call of <see cref="Row"/> (or per slice): the runner sets it so the calls of a chunk's frame fetch everything.</summary>
     public int PerCall;
+
+    /// <summary>The lines holding a per-strand array's entries for all 32 strands of a chunk from s0 (those in range).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static unsafe void Strands<T>(T[] a, int s0) where T : unmanaged
+    {
+        for (int k = 0, n = StrandEntries(sizeof(T)); k < n; k++) Line(a, s0 + StrandEntry(k, sizeof(T)));
+    }
+
+    /// <summary>
+    /// How many entries <see cref="Strands{T}"/> fetches the lines of, for entries of <paramref name="size"/> bytes: one
+    /// every line's width apart, and the last, so that every line the 32 entries touch holds one of them.
+    /// </summary>
+    internal static int StrandEntries(int size) => (StrandChunk.Lanes - 2) / (64 / size) + 2;
+
+    /// <summary>The k-th of those entries, from the chunk's first strand.</summary>
+    internal static int StrandEntry(int k, int size) => k == StrandEntries(size) - 1 ? StrandChunk.Lanes - 1 : k * (64 / size);
+
+    /// <summary>The lines holding the entries of the chunk's first and last strands (what <see cref="StrandChunk.OwnsBlock"/> reads).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void Ends<T>(T[] a, int s0) where T : unmanaged
+    {
+        Line(a, s0);
+        Line(a, s0 + StrandChunk.Lanes - 1);
+    }
+
+    /// <summary>The line holding the entry of the chunk's first strand (state kept per chunk, at its first strand).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void First<T>(T[] a, int s0) where T : unmanaged => Line(a, s0);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void Line<T>(T[] a, int i) where T : unmanaged
+    {
+        // A prefetch never faults, and one through an address the GC has since moved only fetches a line for nothing.
+        if ((uint)i < (uint)a.Length && Sse.IsSupported) Sse.Prefetch0(Unsafe.AsPointer(ref a[i]));
+    }
 
     /// <summary>One row's share through a pointer from <see cref="StrandChunk.Prefetch"/> (nothing for 0).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

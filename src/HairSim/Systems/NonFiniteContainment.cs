@@ -44,6 +44,15 @@ internal sealed class NonFiniteContainment
         int from = w.StrandFirst[begin], to = w.StrandFirst[end - 1] + w.StrandCapacity[end - 1];
         if (AllFinite(w.PosX, from, to) && AllFinite(w.PosY, from, to) && AllFinite(w.PosZ, from, to) &&
             AllFinite(w.VelX, from, to) && AllFinite(w.VelY, from, to) && AllFinite(w.VelZ, from, to)) return;
+        ResetNonFinite(w, head, begin, end);
+    }
+
+    /// <summary>
+    /// Resets the strands of [begin, end) that hold a non-finite value, strand by strand: after a scan found one (the
+    /// chunk runner scans a chunk's rows itself, in L1, before storing them; <see cref="Scan"/> the world's buffers).
+    /// </summary>
+    public void ResetNonFinite(HairWorld w, in RigidTransform head, int begin, int end)
+    {
         for (int s = begin; s < end; s++)
         {
             var reason = Check(w, s);

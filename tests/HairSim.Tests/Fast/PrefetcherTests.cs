@@ -32,6 +32,30 @@ public class PrefetcherTests
         Assert.Equal(p.Lines, p.Issued); // nothing past the chunk
     }
 
+    [Theory]
+    [InlineData(1)]
+    [InlineData(2)]
+    [InlineData(4)]
+    [InlineData(8)]
+    public void AChunksPerStrandEntriesAreFetchedOnEveryLineTheyTouch(int size)
+    {
+        // Whatever the array's alignment: every 64-byte line holding one of the 32 entries holds a fetched one.
+        for (int offset = 0; offset < 64; offset += size)
+        {
+            var touched = new HashSet<int>();
+            for (int e = 0; e < 32; e++) touched.Add((offset + e * size) / 64);
+            var fetched = new HashSet<int>();
+            for (int k = 0; k < Prefetcher.StrandEntries(size); k++)
+            {
+                int e = Prefetcher.StrandEntry(k, size);
+                Assert.InRange(e, 0, 31);
+                fetched.Add((offset + e * size) / 64);
+            }
+            Assert.Equal(touched.OrderBy(x => x), fetched.OrderBy(x => x));
+        }
+        Assert.True(Prefetcher.StrandEntries(size) <= 32 * size / 64 + 2); // about a line each, not an entry each
+    }
+
     [Fact]
     public void NothingIsFetchedPastTheWorldsEnd()
     {

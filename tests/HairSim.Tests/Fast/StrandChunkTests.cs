@@ -222,6 +222,63 @@ public class StrandChunkTests(ITestOutputHelper output)
     }
 
     /// <summary>Simulations of two copies of a scene, chunks on and off.</summary>
+    [Theory]
+    [InlineData("rest", 1)]
+    [InlineData("rest", 2)]
+    [InlineData("rest-speed-limit", 1)]
+    [InlineData("rest-soft", 2)]
+    [InlineData("rest-cut-mixed", 1)]
+    [InlineData("rest-p3", 2)]
+    [InlineData("rest-p40", 1)]
+    [InlineData("limp", 1)]
+    public void TheSweepThatIntegratesEachRowGivesTheBitsOfIntegrationsOwnPass(string scene, int threads)
+    {
+        if (!ChunksExpected) return; // chunks (and so the fused sweep) need AVX-512
+        var fused = FastPathScenes.Build(scene, SolverPath.Fast);
+        var apart = FastPathScenes.Build(scene, SolverPath.Fast);
+        using var dispatcher = new ParallelDispatcher(threads);
+        var simF = new HairSimulation(fused, dispatcher: dispatcher);
+        var simA = new HairSimulation(apart, dispatcher: dispatcher);
+        simA.Pipeline.FuseChunkIntegration = false;
+        Assert.True(simF.Pipeline.FuseChunkIntegration);
+        int stepped = 0;
+        for (int f = 1; f <= 12; f++)
+        {
+            simF.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simA.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            // Limp hair has no bend sweep to take the integration in.
+            Assert.Equal(scene != "limp", simF.Pipeline.LastFrameIntegratedInSweep);
+            Assert.False(simA.Pipeline.LastFrameIntegratedInSweep);
+            Assert.Equal(simF.Pipeline.LastFrameChunks.Stepped, simA.Pipeline.LastFrameChunks.Stepped);
+            stepped += simF.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(fused.World.BitEquals(apart.World), $"{scene}, {threads} thread(s): fused and apart differ after frame {f}");
+        }
+        Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
+        Assert.False(FastPathScenes.Build(scene, SolverPath.Fast).World.BitEquals(fused.World));
+    }
+
+    [Fact]
+    public void ANonFiniteValuePastACutInAChunkIsContainedAsOnTheSystemBySystemPath()
+    {
+        // The runner scans a chunk's stored rows itself (past the cuts too), not the world's buffers after the job.
+        var chunked = FastPathScenes.Build("rest-cut", SolverPath.Fast);
+        var plain = FastPathScenes.Build("rest-cut", SolverPath.Fast);
+        var (simC, simP) = Pair(chunked, plain);
+        for (int f = 1; f <= 6; f++) StepBoth(simC, simP, f);
+        var w = chunked.World;
+        int victim = -1;
+        for (int s = 0; s < w.StrandCount && victim < 0; s++) if (w.StrandParticleCount[s] < w.StrandCapacity[s]) victim = s;
+        Assert.True(victim >= 0, "the scene has a cut strand");
+        int past = w.StrandFirst[victim] + w.StrandCapacity[victim] - 1;
+        chunked.World.VelX[past] = float.NaN;
+        plain.World.VelX[past] = float.NaN;
+        StepBoth(simC, simP, 7);
+        if (ChunksExpected) Assert.True(simC.Pipeline.LastFrameChunks.Stepped > 0);
+        Assert.Equal([victim], simC.LastFrameReport.ResetStrands.ToArray());
+        Assert.Equal([victim], simP.LastFrameReport.ResetStrands.ToArray());
+        Assert.Equal(0, w.CountNonFinite());
+    }
+
     private static (HairSimulation Chunked, HairSimulation Plain) Pair(HairScene chunked, HairScene plain)
     {
         var p = new HairSimulation(plain);
