@@ -14,11 +14,11 @@ namespace HairSim.Fast;
 /// field (<see cref="SignedDistanceField.Bricks"/>, one gather from a small table) settles them without the
 /// eight-value sample. The bound only skips samples whose result could not change a decision: a particle whose
 /// brick lies farther than the margin plus half the chunk's longest segment (plus the trilinear slack) is neither
-/// pushed nor starts a midpoint test, and a midpoint whose brick lies beyond the margin is not pushed. After a chunk's
-/// first substep, a row whose lanes have all stayed within their clearance of where the row was last measured (the
-/// distance beyond that far threshold, over √3) is settled without a sample at all, and so is a row's midpoint test
-/// when every tested midpoint stayed within its clearance (its distance beyond the margin, over √3). Strands outside
-/// chunks (and machines without AVX-512) go through the reference system.
+/// pushed nor starts a midpoint test, and a midpoint whose brick lies beyond the margin is not pushed. A row whose lanes
+/// have all stayed within their clearance of where the row was last measured (the distance beyond that far threshold,
+/// over √3) is settled without a sample at all, and so is a row's midpoint test when every tested midpoint stayed within
+/// its clearance (its distance beyond the margin, over √3); the records are carried from frame to frame, so this holds
+/// from a chunk's first substep on. Strands outside chunks (and machines without AVX-512) go through the reference system.
 /// </summary>
 public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
 {
@@ -51,7 +51,58 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         // The calling thread's memos are made here, in the first frame, not on the first chunk it happens to take:
         // which chunks a thread takes varies, and a step must allocate nothing once the scene runs.
         for (int m = 0; m < n; m++) CornerMemo.For(m, _colliders[m].Field);
+        PrepareCarriedClearances();
         return true;
+    }
+
+    // Clearances carried from frame to frame, per mesh collider: for each particle slot, the record of its particle and of
+    // the midpoint of the segment ending at it (each 8 lanes of a chunk row as the thread memo keeps them), in the chunk's
+    // row layout at 8 × its first particle. A record is a fact about the field, true whichever particle reads it (a
+    // particle's: the field is at least d at this head-space point; a midpoint's: it stays above the margin within this
+    // ball), so it holds across frames, edits and other chunk boundaries, and is dropped only when the field or the
+    // margin changes. With them a chunk's first substep settles its far rows as its later substeps do, instead of
+    // sampling every row again.
+    private const int CarryFloats = 2 * ClearFloats / 8; // per particle: 4 for its record, 4 for its midpoint's
+    private float[]?[] _carry = [];
+    private SignedDistanceField?[] _carryField = [];
+    private float[] _carryMargin = [];
+
+    private void PrepareCarriedClearances()
+    {
+        var w = _scene?.World;
+        int n = _colliders.Length;
+        if (w == null || n == 0) return;
+        if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryField, n); Array.Resize(ref _carryMargin, n); }
+        long size = (long)CarryFloats * w.ParticleCount;
+        for (int m = 0; m < n; m++)
+        {
+            var mc = _colliders[m];
+            var carry = _carry[m];
+            bool fresh = carry == null || carry.Length != size;
+            if (fresh) _carry[m] = carry = GC.AllocateUninitializedArray<float>((int)size, pinned: true);
+            if (fresh || !ReferenceEquals(_carryField[m], mc.Field) || _carryMargin[m] != mc.Margin)
+            {
+                // −1 everywhere: no distance or squared move that settles anything, so every record misses until a
+                // measure fills it.
+                Array.Fill(carry!, -1f);
+                _carryField[m] = mc.Field; _carryMargin[m] = mc.Margin;
+            }
+        }
+    }
+
+    /// <summary>
+    /// A distance at or above this can neither be pushed (it is above the margin) nor start a midpoint test (less half
+    /// the longest segment, <paramref name="maxRest"/>, it is still above the threshold), so its exact value is not needed.
+    /// </summary>
+    private static float FarDistance(MeshCollider mc, float maxRest) =>
+        MeshCollideSystem.MidpointThreshold(mc) + 0.5f * maxRest + 1e-3f * mc.Field.CellSize;
+
+    float[]? IStrandChunkSystem.ChunkBlock(int s0, int first, int cells, out int offset, out int fields)
+    {
+        // The first mesh's carried clearances, fetched with the chunk's fields.
+        offset = CarryFloats * first; fields = CarryFloats;
+        var carry = _carry.Length > 0 ? _carry[0] : null;
+        return carry != null && offset + (long)fields * cells <= carry.Length ? carry : null;
     }
 
     unsafe bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
@@ -60,12 +111,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         var colliders = mine ? _colliders : scene.MeshColliderArray;
         if (colliders.Length == 0) return true;
         const int L = StrandChunk.Lanes;
-        // The longest segment of the chunk (rows 1 … height − 1 hold the segments' rest lengths).
-        ref float rest0 = ref chunk.Row(StrandChunk.RestLength, 0);
-        var longest = Vector256<float>.Zero;
-        for (int i = L, n = chunk.Height * L; i < n; i += 8) longest = Vector256.Max(longest, Vector256.LoadUnsafe(ref rest0, (nuint)i));
-        float maxRest = 0f;
-        for (int l = 0; l < 8; l++) maxRest = MathF.Max(maxRest, longest.GetElement(l));
+        bool carried = mine && _carry.Length == colliders.Length;
+        float maxRest = ChunkMaxRest(chunk);
         ref int live = ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(scene.World.StrandParticleCount), chunk.FirstStrand);
         var rows = new Rows(chunk);
         // One mesh after the other, as the reference does over its strands.
@@ -78,8 +125,17 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             fixed (float* data = field.Data, bricks = field.Bricks)
             {
                 float* memo = CornerMemo.For(m, field);
-                var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats, memo + 2 * MemoFloats,
-                    memo + 2 * MemoFloats + ClearanceFloats, reuse: substep > 0);
+                float* clear = memo + 2 * MemoFloats, midClear = memo + 2 * MemoFloats + ClearanceFloats;
+                var carry = carried ? _carry[m] : null;
+                if (carry != null && (long)CarryFloats * (chunk.Firsts[0] + L * chunk.Height) <= carry.Length)
+                {
+                    // Pinned: its records are read and written in place.
+                    clear = (float*)Unsafe.AsPointer(ref carry[CarryFloats * chunk.Firsts[0]]);
+                    midClear = clear + L * chunk.Height * ClearFloats / 8;
+                }
+                else carry = null;
+                var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats, clear, midClear,
+                    reuse: substep > 0 || carry != null);
                 for (int g = 0; g < L; g += 8)
                     k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
             }
@@ -87,11 +143,26 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         return true;
     }
 
+    /// <summary>The chunk's longest segment (rows 1 … height − 1 hold the segments' rest lengths).</summary>
+    private static float ChunkMaxRest(scoped StrandChunk chunk)
+    {
+        const int L = StrandChunk.Lanes;
+        ref float rest0 = ref chunk.Row(StrandChunk.RestLength, 0);
+        var longest = Vector256<float>.Zero;
+        for (int i = L, n = chunk.Height * L; i < n; i += 8) longest = Vector256.Max(longest, Vector256.LoadUnsafe(ref rest0, (nuint)i));
+        float maxRest = 0f;
+        for (int l = 0; l < 8; l++) maxRest = MathF.Max(maxRest, longest.GetElement(l));
+        return maxRest;
+    }
+
     /// <summary>Floats of one 8-lane row's corner memo: 8 cell indices and 8 corner values, 8 lanes each.</summary>
     private const int CornerFloats = 72;
     /// <summary>Floats of the particle (or the midpoint) memos of the tallest chunk: one per 8 lanes of each row.</summary>
     private const int MemoFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8 * CornerFloats;
-    /// <summary>Floats of one 8-lane row's clearance record: head-space x, y, z where the row was last measured and the squared distance it may move.</summary>
+    /// <summary>
+    /// Floats of one 8-lane row's clearance record: head-space x, y, z where the row was last measured, and for a
+    /// particle row the distance (a lower bound) measured there, for a midpoint row the squared distance it may move.
+    /// </summary>
     private const int ClearFloats = 32;
     /// <summary>Floats of one mesh's memos per thread: particle and midpoint corners, then the rows' clearances.</summary>
     private const int ClearanceFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8 * ClearFloats;
@@ -171,9 +242,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             _margin = Vector256.Create(mc.Margin);
             float threshold = MeshCollideSystem.MidpointThreshold(mc);
             _threshold = Vector256.Create(threshold);
-            // A distance at or above this can neither be pushed (it is above the margin) nor start a midpoint test
-            // (less half the longest segment it is still above the threshold), so its exact value is not needed.
-            _far = Vector256.Create(threshold + 0.5f * maxRest + 1e-3f * f.CellSize);
+            _far = Vector256.Create(FarDistance(mc, maxRest));
             _slide = Vector256.Create(slide);
             _tx = Vector256.Create(pose.T.X); _ty = Vector256.Create(pose.T.Y); _tz = Vector256.Create(pose.T.Z);
             ref readonly var l = ref pose.ToLocal;
@@ -247,20 +316,21 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             float* clear = _clearance + o * ClearFloats / 8;
             if (track && _reuse)
             {
-                // Every lane still within its clearance of where the row was last measured this frame: the field there
-                // is at least the far distance (it moves by at most √3 × the move), which settles the row as an exact
-                // sample would (not pushed, no midpoint test from it).
+                // Every lane still within its clearance of where the row was last measured (this frame or an earlier
+                // one): the field there is at least the far distance (it moves by at most √3 × the move), which settles
+                // the row as an exact sample would (not pushed, no midpoint test from it). A record keeps the distance,
+                // not the clearance, so it holds for whichever chunk's far distance reads it.
                 var mx = lx - Vector256.Load(clear); var my = ly - Vector256.Load(clear + 8); var mz = lz - Vector256.Load(clear + 16);
-                if (Vector256.LessThanAll(mx * mx + my * my + mz * mz, Vector256.Load(clear + 24))) return _far;
+                var c = Avx.Max(Vector256.Load(clear + 24) - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
+                if (Vector256.LessThanAll(mx * mx + my * my + mz * mz, c * c)) return _far;
             }
             float* corners = _particleCorners + o * CornerFloats / 8;
             var d = Distance(lx, ly, lz, corners);
             if (track)
             {
-                // The clearance: how far each lane may move before the field there could fall below the far distance
-                // (zero for a lane nearer than that, so it is measured every substep).
-                var c = Avx.Max(d - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
-                lx.Store(clear); ly.Store(clear + 8); lz.Store(clear + 16); (c * c).Store(clear + 24);
+                // Where it was measured and what: each lane may move (d − far)/√3 before the field there could fall below
+                // the far distance (none for a lane nearer than that, so it is measured every substep).
+                lx.Store(clear); ly.Store(clear + 8); lz.Store(clear + 16); d.Store(clear + 24);
             }
             var push = mask & Vector256.LessThan(d, _margin) & ~Vector256.Equals(Vector256.LoadUnsafe(ref r.M, o), Vector256<float>.Zero);
             if (push == Vector256<float>.Zero) return d;

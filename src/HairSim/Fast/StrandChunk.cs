@@ -589,7 +589,8 @@ internal sealed class StrandChunkRunner
 /// </summary>
 internal unsafe struct Prefetcher
 {
-    private const int MaxFields = 16;
+    // Positions, velocities, masses and rest lengths (8), the bend sweep's block (5), the mesh collision's carried clearances (8).
+    private const int MaxFields = 24;
     private fixed long _field[MaxFields];
     private int _cursor;
     private readonly int _linesPerField;

@@ -94,6 +94,46 @@ public sealed class FastMeshCollideTests
     }
 
     [Fact]
+    public void ClearancesCarriedFromFrameToFrameKeepTheReferenceBitsThroughNewFieldsMarginsAndRestLengths()
+    {
+        // A chunk's first substep settles far rows on the distances its last frame measured (facts about one field):
+        // through a thicker head, a wider margin and longer segments (a larger far distance), the chunk path must keep
+        // the reference's bits.
+        var (mesh, field) = Head.Value;
+        var data = (float[])field.Data.Clone();
+        for (int i = 0; i < data.Length; i++) data[i] -= 0.02f;
+        var thicker = SignedDistanceField.FromData(field.Origin, field.CellSize, field.Nx, field.Ny, field.Nz, data);
+        var chunked = MeshScene(8);
+        var plain = MeshScene(8);
+        var simC = new HairSimulation(chunked, dispatcher: SequentialDispatcher.Instance);
+        var simP = new HairSimulation(plain, dispatcher: SequentialDispatcher.Instance);
+        simP.Pipeline.UseStrandChunks = false;
+        float margin = chunked.GetComponent<MeshCollider>()!.Margin;
+        int stepped = 0;
+        for (int f = 1; f <= 40; f++)
+        {
+            foreach (var scene in new[] { chunked, plain })
+            {
+                if (f == 11) scene.SetComponent(new MeshCollider(thicker, margin, mesh));
+                if (f == 21) scene.SetComponent(new MeshCollider(field, 3f * margin, mesh));
+                if (f == 31)
+                {
+                    var w = scene.World;
+                    for (int i = 0; i < w.ParticleCount; i++) w.RestLength[i] *= 3f;
+                    w.MarkEdited();
+                }
+            }
+            simC.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+            simP.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+            stepped += simC.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(chunked.World.BitEquals(plain.World), $"the chunk and reference mesh passes differ after frame {f}");
+        }
+        if (ChunksExpected) Assert.True(stepped >= 40 * 4, $"only {stepped} chunks stepped");
+        // The thicker head and the wider margin changed the hair: the swaps were felt, not idle.
+        Assert.False(MeshScene(8).World.BitEquals(chunked.World));
+    }
+
+    [Fact]
     public void MeshCollisionAllocatesNothingPerStep()
     {
         var scene = MeshScene();
