@@ -148,7 +148,12 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
             public readonly Vector512<float> Cx = Vector512.Create(c.Center.X), Cy = Vector512.Create(c.Center.Y), Cz = Vector512.Create(c.Center.Z),
                 InvRx = Vector512.Create(1f / c.Radii.X), InvRy = Vector512.Create(1f / c.Radii.Y), InvRz = Vector512.Create(1f / c.Radii.Z),
                 InvRx2 = Vector512.Create(1f / (c.Radii.X * c.Radii.X)), InvRy2 = Vector512.Create(1f / (c.Radii.Y * c.Radii.Y)),
-                InvRz2 = Vector512.Create(1f / (c.Radii.Z * c.Radii.Z)), Ry = Vector512.Create(c.Radii.Y), Slide = Vector512.Create(slide);
+                InvRz2 = Vector512.Create(1f / (c.Radii.Z * c.Radii.Z)), Ry = Vector512.Create(c.Radii.Y), Slide = Vector512.Create(slide),
+                // The largest radius squared, with room for the roundings of the rotation and of q·q (about 1e-6).
+                Outer2 = Vector512.Create(Largest(c.Radii) * Largest(c.Radii) * 1.0001f);
+            public readonly Vector<float> Outer8 = new(Largest(c.Radii) * Largest(c.Radii) * 1.0001f);
+
+            private static float Largest(Vector3 r) => MathF.Max(r.X, MathF.Max(r.Y, r.Z));
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -157,7 +162,11 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
         {
             ref readonly W16 k = ref _w;
             var x = Vector512.LoadUnsafe(ref px); var y = Vector512.LoadUnsafe(ref py); var z = Vector512.LoadUnsafe(ref pz);
-            k.ToLocal.Direction(x - k.Cx, y - k.Cy, z - k.Cz, out var lx, out var ly, out var lz);
+            var dx = x - k.Cx; var dy = y - k.Cy; var dz = z - k.Cz;
+            // Every lane outside the sphere round the ellipsoid (most rows of hanging hair): no hit, without the
+            // rotation and the root; the lanes it lets through get the same test as before, so the same bits.
+            if (Vector512.GreaterThanAll(dx * dx + dy * dy + dz * dz, k.Outer2)) return;
+            k.ToLocal.Direction(dx, dy, dz, out var lx, out var ly, out var lz);
             var qx = lx * k.InvRx; var qy = ly * k.InvRy; var qz = lz * k.InvRz;
             var r = Vector512.Sqrt(qx * qx + qy * qy + qz * qz);
             var hit = Vector512.LessThan(r, Vector512<float>.One) & ~Vector512.Equals(Vector512.LoadUnsafe(ref invMass), Vector512<float>.Zero);
@@ -204,7 +213,10 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
                           ref float invMass, ref float rx, ref float ry, ref float rz)
         {
             var x = Simd.Ld(ref px, 0); var y = Simd.Ld(ref py, 0); var z = Simd.Ld(ref pz, 0);
-            _toLocal.Direction(x - _cx, y - _cy, z - _cz, out var lx, out var ly, out var lz);
+            var dx = x - _cx; var dy = y - _cy; var dz = z - _cz;
+            // As Chunk16: every lane outside the sphere round the ellipsoid, no hit.
+            if (Vector.GreaterThanAll(dx * dx + dy * dy + dz * dz, _w.Outer8)) return;
+            _toLocal.Direction(dx, dy, dz, out var lx, out var ly, out var lz);
             var qx = lx * _invRx; var qy = ly * _invRy; var qz = lz * _invRz;
             var r = Vector.SquareRoot(qx * qx + qy * qy + qz * qz);
             var hit = Vector.LessThan(r, Vector<float>.One) & ~Vector.Equals(Simd.Ld(ref invMass, 0), Vector<float>.Zero);
