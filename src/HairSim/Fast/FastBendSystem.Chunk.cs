@@ -115,8 +115,9 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
             t.Offset(StrandChunk.InvMass), t.Offset(StrandChunk.RestLength),
             0, cells, 2 * cells, 3 * cells, 4 * cells, chunk.Prefetch);
         ref float rest = ref _chunkBend[ChunkBendFields * chunk.Firsts[0]];
-        if (_fuseIntegrate) Sweep16<Fused>(ref t.Data[0], ref rest, chunk.Height, in p);
-        else Sweep16<Apart>(ref t.Data[0], ref rest, chunk.Height, in p);
+        // Rows past every lane's cut are left out (StrandChunk.LiveRows): no row before them reads them.
+        if (_fuseIntegrate) Sweep16<Fused>(ref t.Data[0], ref rest, chunk.LiveRows, in p);
+        else Sweep16<Apart>(ref t.Data[0], ref rest, chunk.LiveRows, in p);
         return true;
     }
 }

@@ -48,15 +48,22 @@ internal readonly ref struct StrandChunk
     /// hold no particle of the strand; they are masked like the particles past a cut and never stored.
     /// </summary>
     public readonly int Height;
+    /// <summary>
+    /// Rows from here on are past every lane's cut (pins in every lane, put back as they were before the chunk is
+    /// stored): the row sweeps and per-particle passes stop here, with the bits of going on (nothing there moves).
+    /// <see cref="Height"/> for an uncut chunk.
+    /// </summary>
+    public readonly int LiveRows;
     /// <summary>The world index of the strand in lane 0 (lane l holds strand FirstStrand + l).</summary>
     public readonly int FirstStrand;
 
     /// <summary>The runner's prefetch of the next chunk (a <see cref="Prefetcher"/> on its stack), or 0: see <see cref="Prefetcher.Row"/>.</summary>
     public readonly nint Prefetch;
 
-    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, ulong pinnedRows, int height = Rows, int firstStrand = 0, nint prefetch = 0)
+    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, ulong pinnedRows, int height = Rows, int firstStrand = 0, nint prefetch = 0, int liveRows = -1)
     {
         Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height; FirstStrand = firstStrand; Prefetch = prefetch;
+        LiveRows = liveRows < 0 ? height : Math.Min(liveRows, height);
     }
 
     /// <summary>Calls of <see cref="Prefetcher.Row"/> a row-sweeping system makes per row: one per 16-lane half.</summary>
@@ -84,7 +91,7 @@ internal readonly ref struct StrandChunk
         ref float px = ref Row(X, 0), py = ref Row(Y, 0), pz = ref Row(Z, 0);
         ref float vx = ref Row(VelX, 0), vy = ref Row(VelY, 0), vz = ref Row(VelZ, 0), m = ref Row(InvMass, 0);
         ref float rx = ref Row(RestX, 0), ry = ref Row(RestY, 0), rz = ref Row(RestZ, 0);
-        for (int i = 0, cells = Height * Lanes; i < cells; i += 16)
+        for (int i = 0, cells = LiveRows * Lanes; i < cells; i += 16)
             kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
                 ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
                 ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
@@ -310,6 +317,8 @@ internal sealed class StrandChunkRunner
         Load(w.VelX, first, height, tile, StrandChunk.VelX); Load(w.VelY, first, height, tile, StrandChunk.VelY); Load(w.VelZ, first, height, tile, StrandChunk.VelZ);
         Load(w.InvMass, first, height, tile, StrandChunk.InvMass);
         int cutFrom = _takesCut ? SavePastCuts(w, s0, height, tileRows, tile, pastCuts) : StrandChunk.Rows;
+        // Rows past every strand's cut need no sweep: the longest live strand's count.
+        int liveRows = cutFrom < height ? MaxLive(w, s0) : height;
         if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, height, tile, StrandChunk.RestLength);
         if ((_needs & ChunkFields.Shape) != 0)
         {
@@ -320,9 +329,9 @@ internal sealed class StrandChunkRunner
         // The next chunk's data is fetched from memory while this one computes: a share per row of a system that
         // sweeps rows, else a slice after each system.
         var prefetch = new Prefetcher(w, s0 + StrandChunk.Lanes, first + StrandChunk.Lanes * height, height, _needs, _chunkSystems);
-        int calls = ctx.Substeps * (_rowPaced ? Math.Max(1, height - 1) * StrandChunk.RowPrefetchCalls : _chunkSystems.Length);
+        int calls = ctx.Substeps * (_rowPaced ? Math.Max(1, liveRows - 1) * StrandChunk.RowPrefetchCalls : _chunkSystems.Length);
         prefetch.PerCall = (prefetch.Lines + calls - 1) / calls;
-        var chunk = new StrandChunk(tile, firsts, pinned, height, s0, _rowPaced ? (nint)(&prefetch) : 0);
+        var chunk = new StrandChunk(tile, firsts, pinned, height, s0, _rowPaced ? (nint)(&prefetch) : 0, liveRows);
         foreach (var c in _chunkSystems) c.PrepareChunk(w, s0, chunk);
         for (int s = 0; s < ctx.Substeps; s++)
             for (int k = 0; k < _chunkSystems.Length; k++)
@@ -429,6 +438,16 @@ internal sealed class StrandChunkRunner
                 Vector512.ConditionalSelect(deadHi, Vector512.LoadUnsafe(ref keep, 16), Vector512.LoadUnsafe(ref row, 16)).StoreUnsafe(ref row, 16);
             }
         }
+    }
+
+    /// <summary>The largest live particle count of the chunk's 32 strands.</summary>
+    private static int MaxLive(HairWorld w, int s0)
+    {
+        var (lo, hi) = LiveCounts(w, s0);
+        var m = Vector512.Max(lo, hi);
+        var m8 = Vector256.Max(m.GetLower(), m.GetUpper());
+        var m4 = Vector128.Max(m8.GetLower(), m8.GetUpper());
+        return Math.Max(Math.Max(m4.GetElement(0), m4.GetElement(1)), Math.Max(m4.GetElement(2), m4.GetElement(3)));
     }
 
     /// <summary>The live particle counts of the chunk's 32 strands, as two 16-lane halves.</summary>

@@ -257,6 +257,34 @@ public class StrandChunkTests(ITestOutputHelper output)
         Assert.False(FastPathScenes.Build(scene, SolverPath.Fast).World.BitEquals(fused.World));
     }
 
+    [Theory]
+    [InlineData(1)]
+    [InlineData(2)]
+    public void ChunksCutShortInEveryStrandSweepOnlyTheirLiveRowsWithTheBitsOfTheSystemBySystemPath(int threads)
+    {
+        // Every strand keeps 2 … 6 of its 16 particles: rows 6 … 15 are past every lane's cut, and the chunk's sweeps
+        // and per-particle passes stop before them (StrandChunk.LiveRows).
+        var chunked = FastPathScenes.Build("rest", SolverPath.Fast);
+        var plain = FastPathScenes.Build("rest", SolverPath.Fast);
+        foreach (var w in new[] { chunked.World, plain.World })
+        {
+            for (int s = 0; s < w.StrandCount; s++) w.StrandParticleCount[s] = 2 + s % 5;
+            w.MarkEdited();
+        }
+        using var dispatcher = new ParallelDispatcher(threads);
+        var simC = new HairSimulation(chunked, dispatcher: dispatcher);
+        var simP = new HairSimulation(plain, dispatcher: dispatcher);
+        simP.Pipeline.UseStrandChunks = false;
+        int stepped = 0;
+        for (int f = 1; f <= 12; f++)
+        {
+            StepBoth(simC, simP, f);
+            stepped += simC.Pipeline.LastFrameChunks.Stepped;
+        }
+        if (ChunksExpected) Assert.True(stepped > 0, "no chunk was stepped");
+        Assert.False(FastPathScenes.Build("rest", SolverPath.Fast).World.BitEquals(chunked.World));
+    }
+
     [Fact]
     public void ANonFiniteValuePastACutInAChunkIsContainedAsOnTheSystemBySystemPath()
     {
