@@ -55,14 +55,14 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         return true;
     }
 
-    // Clearances carried from frame to frame, per mesh collider: for each particle slot, the record of its particle and of
-    // the midpoint of the segment ending at it (each 8 lanes of a chunk row as the thread memo keeps them), in the chunk's
-    // row layout at 8 × its first particle. A record is a fact about the field, true whichever particle reads it (a
-    // particle's: the field is at least d at this head-space point; a midpoint's: it stays above the margin within this
-    // ball), so it holds across frames, edits and other chunk boundaries, and is dropped only when the field or the
-    // margin changes. With them a chunk's first substep settles its far rows as its later substeps do, instead of
-    // sampling every row again.
-    private const int CarryFloats = 2 * ClearFloats / 8; // per particle: 4 for its record, 4 for its midpoint's
+    // Clearances carried from frame to frame, per mesh collider: for each particle slot, its record (each 8 lanes of a
+    // chunk row as the thread memo keeps them), in the chunk's row layout at 4 × its first particle. A record is a fact
+    // about the field, true whichever particle reads it (the field is at least d at this head-space point), so it holds
+    // across frames, edits and other chunk boundaries, and is dropped only when the field changes (or the margin, kept
+    // with it for safety). With them a chunk's first substep settles its far rows as its later substeps do, instead of
+    // sampling every row again. The midpoints' records stay in the thread memo, from the chunk's first substep on:
+    // carried too, they made no measurable difference and doubled the block.
+    private const int CarryFloats = ClearFloats / 8; // per particle: its record's x, y, z and distance
     private float[]?[] _carry = [];
     private SignedDistanceField?[] _carryField = [];
     private float[] _carryMargin = [];
@@ -131,11 +131,10 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 {
                     // Pinned: its records are read and written in place.
                     clear = (float*)Unsafe.AsPointer(ref carry[CarryFloats * chunk.Firsts[0]]);
-                    midClear = clear + L * chunk.Height * ClearFloats / 8;
                 }
                 else carry = null;
                 var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats, clear, midClear,
-                    reuse: substep > 0 || carry != null);
+                    reuse: substep > 0 || carry != null, reuseMidpoints: substep > 0);
                 for (int g = 0; g < L; g += 8)
                     k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
             }
@@ -221,7 +220,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private unsafe readonly struct Kernel
     {
         private readonly float* _d, _bricks, _particleCorners, _midpointCorners, _clearance, _midpointClearance;
-        private readonly bool _reuse;
+        private readonly bool _reuse, _reuseMidpoints;
         private readonly int _sy, _sz;
         private readonly Vector256<float> _ox, _oy, _oz, _inv, _cell, _hx, _hy, _hz, _band, _margin, _threshold, _far, _slide, _tx, _ty, _tz;
         private readonly Vector256<float> _l00, _l01, _l02, _l10, _l11, _l12, _l20, _l21, _l22;
@@ -229,10 +228,10 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         private readonly Vector256<int> _nx, _nxy, _bx, _bxy;
 
         public Kernel(MeshCollider mc, float* d, float* bricks, float maxRest, float slide, in MeshCollideSystem.Pose pose, float* particleCorners, float* midpointCorners,
-            float* clearance, float* midpointClearance, bool reuse)
+            float* clearance, float* midpointClearance, bool reuse, bool reuseMidpoints)
         {
             var f = mc.Field;
-            _d = d; _bricks = bricks; _particleCorners = particleCorners; _midpointCorners = midpointCorners; _clearance = clearance; _reuse = reuse;
+            _d = d; _bricks = bricks; _particleCorners = particleCorners; _midpointCorners = midpointCorners; _clearance = clearance; _reuse = reuse; _reuseMidpoints = reuseMidpoints;
             _midpointClearance = midpointClearance;
             _sy = f.Nx; _sz = f.Nx * f.Ny;
             _ox = Vector256.Create(f.Origin.X); _oy = Vector256.Create(f.Origin.Y); _oz = Vector256.Create(f.Origin.Z);
@@ -369,7 +368,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             ToLocal(half * (x0 + x1) - _tx, half * (y0 + y1) - _ty, half * (z0 + z1) - _tz, out var lx, out var ly, out var lz);
             // Every tested midpoint still within its clearance of where it was last measured: none can be inside the margin.
             float* clear = _midpointClearance + o1 * ClearFloats / 8;
-            if (_reuse)
+            if (_reuseMidpoints)
             {
                 var mx = lx - Vector256.Load(clear); var my = ly - Vector256.Load(clear + 8); var mz = lz - Vector256.Load(clear + 16);
                 var within = Vector256.LessThan(mx * mx + my * my + mz * mz, Vector256.Load(clear + 24));

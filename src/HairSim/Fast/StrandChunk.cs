@@ -608,7 +608,7 @@ internal sealed class StrandChunkRunner
 /// </summary>
 internal unsafe struct Prefetcher
 {
-    // Positions, velocities, masses and rest lengths (8), the bend sweep's block (5), the mesh collision's carried clearances (8).
+    // Positions, velocities, masses and rest lengths (8), the bend sweep's block (5), the mesh collision's carried clearances (4).
     private const int MaxFields = 24;
     private fixed long _field[MaxFields];
     private int _cursor;
