@@ -22,12 +22,8 @@ public class StrandChunkTests(ITestOutputHelper output)
     {
         foreach (int threads in new[] { 1, 2 })
         {
-            var chunked = FastPathScenes.Build(scene, SolverPath.Fast);
-            var plain = FastPathScenes.Build(scene, SolverPath.Fast);
             using var dispatcher = new ParallelDispatcher(threads);
-            var simC = new HairSimulation(chunked, dispatcher: dispatcher);
-            var simP = new HairSimulation(plain, dispatcher: dispatcher);
-            simP.Pipeline.UseStrandChunks = false;
+            var (chunked, plain, simC, simP) = Twins(scene, dispatcher, p => p.UseStrandChunks = false);
             Assert.Equal(ChunksExpected, simC.Pipeline.UsesStrandChunks);
             Assert.False(simP.Pipeline.UsesStrandChunks);
             int stepped = 0;
@@ -234,12 +230,8 @@ public class StrandChunkTests(ITestOutputHelper output)
     public void TheSweepThatIntegratesEachRowGivesTheBitsOfIntegrationsOwnPass(string scene, int threads)
     {
         if (!ChunksExpected) return; // chunks (and so the fused sweep) need AVX-512
-        var fused = FastPathScenes.Build(scene, SolverPath.Fast);
-        var apart = FastPathScenes.Build(scene, SolverPath.Fast);
         using var dispatcher = new ParallelDispatcher(threads);
-        var simF = new HairSimulation(fused, dispatcher: dispatcher);
-        var simA = new HairSimulation(apart, dispatcher: dispatcher);
-        simA.Pipeline.FuseChunkIntegration = false;
+        var (fused, apart, simF, simA) = Twins(scene, dispatcher, p => p.FuseChunkIntegration = false);
         Assert.True(simF.Pipeline.FuseChunkIntegration);
         int stepped = 0;
         for (int f = 1; f <= 12; f++)
@@ -264,17 +256,12 @@ public class StrandChunkTests(ITestOutputHelper output)
     {
         // Every strand keeps 2 … 6 of its 16 particles: rows 6 … 15 are past every lane's cut, and the chunk's sweeps
         // and per-particle passes stop before them (StrandChunk.LiveRows).
-        var chunked = FastPathScenes.Build("rest", SolverPath.Fast);
-        var plain = FastPathScenes.Build("rest", SolverPath.Fast);
-        foreach (var w in new[] { chunked.World, plain.World })
+        using var dispatcher = new ParallelDispatcher(threads);
+        var (chunked, _, simC, simP) = Twins("rest", dispatcher, p => p.UseStrandChunks = false, w =>
         {
             for (int s = 0; s < w.StrandCount; s++) w.StrandParticleCount[s] = 2 + s % 5;
             w.MarkEdited();
-        }
-        using var dispatcher = new ParallelDispatcher(threads);
-        var simC = new HairSimulation(chunked, dispatcher: dispatcher);
-        var simP = new HairSimulation(plain, dispatcher: dispatcher);
-        simP.Pipeline.UseStrandChunks = false;
+        });
         int stepped = 0;
         for (int f = 1; f <= 12; f++)
         {
@@ -305,6 +292,23 @@ public class StrandChunkTests(ITestOutputHelper output)
         Assert.Equal([victim], simC.LastFrameReport.ResetStrands.ToArray());
         Assert.Equal([victim], simP.LastFrameReport.ResetStrands.ToArray());
         Assert.Equal(0, w.CountNonFinite());
+    }
+
+    /// <summary>
+    /// Two simulations of the same scene on one dispatcher, both worlds first edited alike (<paramref name="edit"/>), the
+    /// second's pipeline then set apart (<paramref name="setSecond"/>).
+    /// </summary>
+    private static (HairScene First, HairScene Second, HairSimulation SimFirst, HairSimulation SimSecond) Twins(
+        string scene, ParallelDispatcher dispatcher, Action<HairPipeline> setSecond, Action<HairWorld>? edit = null)
+    {
+        var first = FastPathScenes.Build(scene, SolverPath.Fast);
+        var second = FastPathScenes.Build(scene, SolverPath.Fast);
+        edit?.Invoke(first.World);
+        edit?.Invoke(second.World);
+        var simFirst = new HairSimulation(first, dispatcher: dispatcher);
+        var simSecond = new HairSimulation(second, dispatcher: dispatcher);
+        setSecond(simSecond.Pipeline);
+        return (first, second, simFirst, simSecond);
     }
 
     private static (HairSimulation Chunked, HairSimulation Plain) Pair(HairScene chunked, HairScene plain)

@@ -63,15 +63,21 @@ public sealed class FastMeshCollideTests
         if (ChunksExpected) Assert.True(stepped >= 40 * 24 / (cut ? 3 : 1), $"only {stepped} chunks stepped");
     }
 
+    /// <summary>The same grid with every distance <paramref name="by"/> less: the head that much thicker.</summary>
+    private static SignedDistanceField Thicker(SignedDistanceField field, float by)
+    {
+        var data = (float[])field.Data.Clone();
+        for (int i = 0; i < data.Length; i++) data[i] -= by;
+        return SignedDistanceField.FromData(field.Origin, field.CellSize, field.Nx, field.Ny, field.Nz, data);
+    }
+
     [Fact]
     public void TwoScenesWithDifferentFieldsOnOneThreadKeepTheReferenceBits()
     {
         // The chunk kernel remembers each row's last gathered cells per thread and mesh slot: a scene whose field is
         // another on the same grid (the head 1.5 mm thicker) must not read the first scene's values, stepped in turn on one thread.
         var (mesh, field) = Head.Value;
-        var thicker = (float[])field.Data.Clone();
-        for (int i = 0; i < thicker.Length; i++) thicker[i] -= 0.0015f;
-        var coarse = SignedDistanceField.FromData(field.Origin, field.CellSize, field.Nx, field.Ny, field.Nz, thicker);
+        var coarse = Thicker(field, 0.0015f);
         HairScene Build(SignedDistanceField f)
         {
             // One chunk (2 × 16 strands), so each scene's chunk finds the rows the other scene's chunk left.
@@ -100,9 +106,7 @@ public sealed class FastMeshCollideTests
         // through a thicker head, a wider margin and longer segments (a larger far distance), the chunk path must keep
         // the reference's bits.
         var (mesh, field) = Head.Value;
-        var data = (float[])field.Data.Clone();
-        for (int i = 0; i < data.Length; i++) data[i] -= 0.02f;
-        var thicker = SignedDistanceField.FromData(field.Origin, field.CellSize, field.Nx, field.Ny, field.Nz, data);
+        var thicker = Thicker(field, 0.02f);
         var chunked = MeshScene(8);
         var plain = MeshScene(8);
         var simC = new HairSimulation(chunked, dispatcher: SequentialDispatcher.Instance);
