@@ -214,15 +214,15 @@ public sealed partial class FastBendSystem : IHairSystem
         Transpose.StrandsOut(t, TVx, w.VelX, first, rows, lanes); Transpose.StrandsOut(t, TVy, w.VelY, first, rows, lanes); Transpose.StrandsOut(t, TVz, w.VelZ, first, rows, lanes);
     }
 
-    /// <summary>
-    /// Per-sweep constants and where each field's row 0 is: particle fields from one base, the cached rest fields
-    /// (rest directions, joint shares) from another (the same tile here; a chunk keeps them apart). Rows are Lanes floats apart.
-    /// </summary>
     /// <summary><see cref="Sweep16{TIntegrate}"/>: the sweep alone.</summary>
     private struct Apart { }
     /// <summary><see cref="Sweep16{TIntegrate}"/>: each row integrated first (FastIntegrateSystem fused in).</summary>
     private struct Fused { }
 
+    /// <summary>
+    /// Per-sweep constants and where each field's row 0 is: particle fields from one base, the cached rest fields
+    /// (rest directions, joint shares) from another (the same tile here; a chunk keeps them apart). Rows are Lanes floats apart.
+    /// </summary>
     private readonly struct SweepParams
     {
         public readonly float H, InvH, Reaction, FallX, FallY, FallZ;

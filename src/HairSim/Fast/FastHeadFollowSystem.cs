@@ -86,17 +86,17 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.PinRest;
     bool IStrandChunkSystem.TakesCutStrands => true;
 
-    /// <summary>
-    /// The rest positions of the chunk's pinned particles, into the rest rows of the rows that hold pins: from the
-    /// per-strand pin cache (the world's rest arrays are not touched), else from the world.
-    /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void IStrandChunkSystem.PrefetchChunkState(int s0)
     {
         if (!_cache) return;
         Prefetcher.First(_pinRowsAt, s0); Prefetcher.First(_pinRowsMask, s0); Prefetcher.Ends(_pinRowsOwner, s0);
     }
 
+    /// <summary>
+    /// The rest positions of the chunk's pinned particles, into the rest rows of the rows that hold pins: from the
+    /// per-strand pin cache (the world's rest arrays are not touched), else from the world.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
     {
         bool rowsCached = _cache && _cachedAt.Length == w.StrandCount && _pinRows.Length == 3 * w.ParticleCount;
