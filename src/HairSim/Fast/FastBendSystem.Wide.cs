@@ -55,7 +55,7 @@ public sealed partial class FastBendSystem
                 // The root row (pins, which integration leaves as they are, unless a lane holds a free root).
                 nuint r0 = (nuint)h;
                 var x0 = Ld16(ref X, r0); var y0 = Ld16(ref Y, r0); var z0 = Ld16(ref Z, r0);
-                Integrate16(ref Vx, ref Vy, ref Vz, r0, Vector512.Equals(Ld16(ref M, r0), zero), in p, ref x0, ref y0, ref z0, out _, out _, out _);
+                Integrate16(ref Vx, ref Vy, ref Vz, r0, Vector512.Equals(Ld16(ref M, r0), zero), false, in p, ref x0, ref y0, ref z0, out _, out _, out _);
                 St16(ref X, r0, x0); St16(ref Y, r0, y0); St16(ref Z, r0, z0);
             }
             St16(ref sh, Sqx * lanes, Vector512.Create(p.Qx)); St16(ref sh, Sqy * lanes, Vector512.Create(p.Qy));
@@ -80,8 +80,10 @@ public sealed partial class FastBendSystem
                 var x = Ld16(ref X, u); var y = Ld16(ref Y, u); var z = Ld16(ref Z, u);
                 var pinned = Vector512.Equals(Ld16(ref M, u), zero);
                 var free = ~pinned;
+                bool allFree = AllSet(free), noneFree = free == V.Zero;
                 V vux, vuy, vuz;
-                if (typeof(TIntegrate) == typeof(Fused)) Integrate16(ref Vx, ref Vy, ref Vz, u, pinned, in p, ref x, ref y, ref z, out vux, out vuy, out vuz);
+                if (typeof(TIntegrate) == typeof(Fused))
+                    Integrate16(ref Vx, ref Vy, ref Vz, u, pinned, allFree, in p, ref x, ref y, ref z, out vux, out vuy, out vuz);
                 else { vux = Ld16(ref Vx, u); vuy = Ld16(ref Vy, u); vuz = Ld16(ref Vz, u); }
                 var rl = Ld16(ref Ln, u);
                 var rx = Ld16(ref Rx, u); var ry = Ld16(ref Ry, u); var rz = Ld16(ref Rz, u);
@@ -118,7 +120,6 @@ public sealed partial class FastBendSystem
                 var uz = Fms(Vector512.Create(p.H), vuz, Fma(Vector512.Create(p.H), Ld16(ref Vz, up), Ld16(ref sh, SDz * lanes)));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
-                bool allFree = AllSet(free), noneFree = free == V.Zero;
                 V mx = zero, my = zero, mz = zero, ml = zero, mOk = zero;
                 V cdx = zero, cdy = zero, cdz = zero;
                 if (!noneFree)
@@ -235,7 +236,7 @@ public sealed partial class FastBendSystem
     /// velocity stored and returned, its position (x, y, z in) moved by h·v on the free lanes.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Integrate16(ref float Vx, ref float Vy, ref float Vz, nuint r, V pinned, in SweepParams p,
+    private static void Integrate16(ref float Vx, ref float Vy, ref float Vz, nuint r, V pinned, bool nonePinned, in SweepParams p,
         ref V x, ref V y, ref V z, out V vx, out V vy, out V vz)
     {
         var ox = Ld16(ref Vx, r); var oy = Ld16(ref Vy, r); var oz = Ld16(ref Vz, r);
@@ -249,10 +250,19 @@ public sealed partial class FastBendSystem
             var f = Vector512.ConditionalSelect(over, Vector512.Create(p.MaxSpeed) / Vector512.Sqrt(spSq), V.One);
             nx *= f; ny *= f; nz *= f;
         }
-        vx = Sel16(pinned, ox, nx); vy = Sel16(pinned, oy, ny); vz = Sel16(pinned, oz, nz);
-        St16(ref Vx, r, vx); St16(ref Vy, r, vy); St16(ref Vz, r, vz);
         var h = Vector512.Create(p.H);
-        x = Sel16(pinned, x, x + h * nx); y = Sel16(pinned, y, y + h * ny); z = Sel16(pinned, z, z + h * nz);
+        if (nonePinned)
+        {
+            // Every lane free (the common row): the selects would be identities.
+            vx = nx; vy = ny; vz = nz;
+            x += h * nx; y += h * ny; z += h * nz;
+        }
+        else
+        {
+            vx = Sel16(pinned, ox, nx); vy = Sel16(pinned, oy, ny); vz = Sel16(pinned, oz, nz);
+            x = Sel16(pinned, x, x + h * nx); y = Sel16(pinned, y, y + h * ny); z = Sel16(pinned, z, z + h * nz);
+        }
+        St16(ref Vx, r, vx); St16(ref Vy, r, vy); St16(ref Vz, r, vz);
     }
 
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>
