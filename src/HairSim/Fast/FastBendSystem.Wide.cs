@@ -20,7 +20,6 @@ public sealed partial class FastBendSystem
     /// none holds one of the 32 vector registers; held in a struct of vectors they pushed the row's own values onto
     /// the stack (twice the spills, and a clearly slower frame).
     /// </summary>
-    [SkipLocalsInit]
     private static void Sweep16(ref float d, ref float rest, int rows, in SweepParams p) => Sweep16<Apart>(ref d, ref rest, rows, in p);
 
     /// <summary>

@@ -58,21 +58,19 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     // Clearances carried from frame to frame, per mesh collider: for each particle slot, its record (each 8 lanes of a
     // chunk row as the thread memo keeps them), in the chunk's row layout at 4 × its first particle. A record is a fact
     // about the field, true whichever particle reads it (the field is at least d at this head-space point), so it holds
-    // across frames, edits and other chunk boundaries, and is dropped only when the field changes (or the margin, kept
-    // with it for safety). With them a chunk's first substep settles its far rows as its later substeps do, instead of
+    // across frames, edits, margins and other chunk boundaries, and is dropped only when the field changes. With them a chunk's first substep settles its far rows as its later substeps do, instead of
     // sampling every row again. The midpoints' records stay in the thread memo, from the chunk's first substep on:
     // carried too, they made no measurable difference and doubled the block.
     private const int CarryFloats = ClearFloats / 8; // per particle: its record's x, y, z and distance
     private float[]?[] _carry = [];
     private SignedDistanceField?[] _carryField = [];
-    private float[] _carryMargin = [];
 
     private void PrepareCarriedClearances()
     {
         var w = _scene?.World;
         int n = _colliders.Length;
         if (w == null || n == 0) return;
-        if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryField, n); Array.Resize(ref _carryMargin, n); }
+        if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryField, n); }
         long size = (long)CarryFloats * w.ParticleCount;
         for (int m = 0; m < n; m++)
         {
@@ -80,12 +78,11 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             var carry = _carry[m];
             bool fresh = carry == null || carry.Length != size;
             if (fresh) _carry[m] = carry = GC.AllocateUninitializedArray<float>((int)size, pinned: true);
-            if (fresh || !ReferenceEquals(_carryField[m], mc.Field) || _carryMargin[m] != mc.Margin)
+            if (fresh || !ReferenceEquals(_carryField[m], mc.Field))
             {
-                // −1 everywhere: no distance or squared move that settles anything, so every record misses until a
-                // measure fills it.
+                // −1 everywhere: no distance that settles anything, so every record misses until a measure fills it.
                 Array.Fill(carry!, -1f);
-                _carryField[m] = mc.Field; _carryMargin[m] = mc.Margin;
+                _carryField[m] = mc.Field;
             }
         }
     }
