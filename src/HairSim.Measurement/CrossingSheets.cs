@@ -6,9 +6,10 @@ namespace HairSim.Measurement;
 /// What <see cref="CrossingSheets.Run"/> found: crossings measured, how many of them the upper sheet ended at or below
 /// the lower, how many it ended in the lower sheet's layer (at or below it, or less than
 /// <see cref="CrossingSheets.LayerShare"/> of the length above it), the mean gap (as a share of the strand length),
-/// non-finite values, and the parts (volume passes) per frame the pipeline stepped on average.
+/// non-finite values, the parts (volume passes) per frame the pipeline stepped on average, and the worst segment
+/// length error at the end (|length / rest length − 1| over every segment of both sheets).
 /// </summary>
-public readonly record struct CrossingResult(int Crossings, int Sunk, double MeanGap, int NonFinite, double PartsPerFrame = 1, int InLayer = 0)
+public readonly record struct CrossingResult(int Crossings, int Sunk, double MeanGap, int NonFinite, double PartsPerFrame = 1, int InLayer = 0, double LengthError = 0)
 {
     public double SunkShare => Crossings > 0 ? (double)Sunk / Crossings : double.NaN;
 }
@@ -19,7 +20,7 @@ public readonly record struct CrossingResult(int Crossings, int Sunk, double Mea
 /// their roots and rest on the floor with friction. After 3 natural seconds the heights of A and B are compared wherever
 /// a strand of B crosses a strand of A seen from above (about 400 crossings as dropped): without hair–hair interaction B
 /// falls into A's layer and ends below it at about half the crossings; a volume that keeps layers apart leaves B above
-/// A at every one.
+/// A at nearly every one, and strand contacts (<see cref="StrandContactSettings"/>) at every one.
 /// Everything scales with <c>scale</c> (1 = 25 cm strands), times with √scale (Froude), so the case is the same at any size.
 /// </summary>
 public static class CrossingSheets
@@ -33,7 +34,7 @@ public static class CrossingSheets
     /// </summary>
     public const double LayerShare = 0.01;
 
-    public static HairScene Scene(VolumeSettings? volume, SolverPath path, float drop = 0.12f, float scale = 1f)
+    public static HairScene Scene(VolumeSettings? volume, SolverPath path, float drop = 0.12f, float scale = 1f, StrandContactSettings? contacts = null)
     {
         float length = 0.25f * scale, spacing = 0.04f * length;
         var w = new HairWorld(2, Strands, Particles);
@@ -52,13 +53,15 @@ public static class CrossingSheets
         // A floor: the top of a wide, flat ellipsoid.
         scene.AddCollider(Collider.Ellipsoid(new Vector3(0.5f * length, -2f * length, 0f), new Vector3(20f * length, 2f * length, 20f * length)));
         if (volume != null) scene.SetComponent(volume);
+        if (contacts != null) scene.SetComponent(contacts);
         return scene;
     }
 
     /// <summary>Drops sheet B from <paramref name="drop"/> strand lengths above A and runs 3 s × √scale at <paramref name="hz"/>.</summary>
-    public static CrossingResult Run(VolumeSettings? volume, SolverPath path, int hz, float drop = 0.12f, float scale = 1f, IThreadDispatcher? dispatcher = null)
+    public static CrossingResult Run(VolumeSettings? volume, SolverPath path, int hz, float drop = 0.12f, float scale = 1f, IThreadDispatcher? dispatcher = null,
+        StrandContactSettings? contacts = null)
     {
-        var scene = Scene(volume, path, drop, scale);
+        var scene = Scene(volume, path, drop, scale, contacts);
         var sim = new HairSimulation(scene, dispatcher: dispatcher);
         int frames = (int)Math.Ceiling(3.0 * Math.Sqrt(scale) * hz);
         long parts = 0;
@@ -90,7 +93,11 @@ public static class CrossingSheets
                     }
             }
         }
-        return new CrossingResult(crossings, sunk, crossings > 0 ? gaps / crossings / length : double.NaN, w.CountNonFinite(), InLayer: inLayer);
+        double worst = 0;
+        for (int s = 0; s < w.StrandCount; s++)
+            for (int i = w.StrandFirst[s] + 1, e = w.StrandFirst[s] + w.StrandParticleCount[s]; i < e; i++)
+                worst = Math.Max(worst, Math.Abs(Vector3.Distance(w.GetPosition(i), w.GetPosition(i - 1)) / w.RestLength[i] - 1));
+        return new CrossingResult(crossings, sunk, crossings > 0 ? gaps / crossings / length : double.NaN, w.CountNonFinite(), InLayer: inLayer, LengthError: worst);
     }
 
     // Whether segments p0p1 and q0q1 cross in the xz plane, and where along each (0 … 1).

@@ -12,6 +12,8 @@ public sealed class HairPipeline
     private bool _chunkFrame;
     private readonly IHairSystem[] _frameEnd;
     private readonly IHairSystem[] _frameStart;
+    private readonly IHairSystem[] _passEnd;
+    private readonly IPassStartListener[] _passStart;
     private readonly IHairSystem[] _all;
     private readonly IThreadDispatcher _dispatcher;
     private readonly FrameContext _ctx = new();
@@ -43,6 +45,9 @@ public sealed class HairPipeline
         _chunks = Fast.StrandChunkRunner.TryCreate(_substep);
         _frameEnd = systems.FindAll(s => s.Phase == SystemPhase.FrameEnd).ToArray();
         _frameStart = systems.FindAll(s => s.Phase == SystemPhase.FrameStart).ToArray();
+        _passEnd = systems.FindAll(s => s.Phase == SystemPhase.PassEnd).ToArray();
+        _passStart = systems.OfType<IPassStartListener>().ToArray();
+        _ctx.MovedListeners = systems.OfType<IStrandMovedListener>().ToArray();
         _dispatcher = dispatcher;
         _substepJob = RunSubstepJob;
         _frameEndJob = RunFrameEndJob;
@@ -270,6 +275,8 @@ public sealed class HairPipeline
             }
         }
 
+        for (int k = 0; k < _passStart.Length; k++)
+            _passStart[k].PassStarting(_scene, ctx, from == 0f);
         // Systems that couple strands (volume) see the state the last frame left and change velocities before any substep.
         for (int k = 0; k < _frameStart.Length; k++)
             _frameStart[k].Run(_scene, ctx, 0, 0, world.StrandCount);
@@ -283,6 +290,9 @@ public sealed class HairPipeline
             _dispatcher.Run(_jobCount, _substepJob); // each job also contains non-finite values in its strands
         }
         else _containment.Scan(world, headTarget, 0, world.StrandCount);
+        // Systems that resolve what the substeps left between strands (contacts) see the pass's end.
+        for (int k = 0; k < _passEnd.Length; k++)
+            _passEnd[k].Run(_scene, ctx, 0, 0, world.StrandCount);
         world.Head = headTarget;
         if (_frameEnd.Length > 0)
         {

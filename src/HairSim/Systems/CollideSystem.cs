@@ -7,7 +7,7 @@ namespace HairSim;
 /// <see cref="SimulationSettings.KineticFriction"/> set, Coulomb friction in position-based form (Macklin et al.
 /// 2014, "Unified particle physics for real-time applications", §6.1) also holds the particle along the surface.
 /// </summary>
-public sealed class CollideSystem : IHairSystem, IStrandResetListener
+public sealed class CollideSystem : IHairSystem, IStrandResetListener, IStrandMovedListener
 {
     public const string SystemName = "Collide";
     public string Name => SystemName;
@@ -47,6 +47,7 @@ public sealed class CollideSystem : IHairSystem, IStrandResetListener
 
     /// <summary>A strand put back at its rest pose: the start positions stored for it are stale.</summary>
     void IStrandResetListener.StrandReset(HairWorld world, int strand) => _starts.Forget(world, strand, strand + 1);
+    void IStrandMovedListener.StrandMoved(HairWorld world, int strand) => _starts.Moved(world, strand);
 
     /// <summary>
     /// As <see cref="Run"/>, with friction. Per contact: the particle's displacement over the substep, from its position
@@ -139,6 +140,16 @@ internal sealed class FrictionStarts
             _stamp[s] = w.EditStamp;
         }
 
+        /// <summary>Strand s was moved after its last substep: if its end-of-frame positions are stored, the new ones replace them.</summary>
+        public void Moved(HairWorld w, int s)
+        {
+            if (_substep[s] != EndOfFrame) return;
+            int first = w.StrandFirst[s], n = w.StrandCapacity[s];
+            w.PosX.AsSpan(first, n).CopyTo(X.AsSpan(first, n));
+            w.PosY.AsSpan(first, n).CopyTo(Y.AsSpan(first, n));
+            w.PosZ.AsSpan(first, n).CopyTo(Z.AsSpan(first, n));
+        }
+
         /// <summary>A frictionless pass over strands [begin, end): what was stored is stale from now on.</summary>
         public void Forget(int begin, int end) => _substep.AsSpan(begin, end - begin).Fill(Unset);
     }
@@ -154,6 +165,13 @@ internal sealed class FrictionStarts
             if (b == null || !b.Fits(w)) Volatile.Write(ref _buffers, b = new Buffers(w.ParticleCount, w.StrandCount));
             return b;
         }
+    }
+
+    /// <summary>Strand s moved outside the substeps (see <see cref="IStrandMovedListener"/>); costs nothing until friction has been used.</summary>
+    public void Moved(HairWorld w, int s)
+    {
+        var b = Volatile.Read(ref _buffers);
+        if (b != null && b.Fits(w)) b.Moved(w, s);
     }
 
     /// <summary>Called by frictionless passes; costs nothing until friction has been used.</summary>

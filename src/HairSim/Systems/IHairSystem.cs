@@ -12,6 +12,21 @@ public enum SystemPhase
     /// strands (hair volume). Such a system forks its own parallel passes through <see cref="FrameContext.Dispatcher"/>.
     /// </summary>
     FrameStart,
+    /// <summary>
+    /// Once per pass after the substeps (a frame stepped in parts runs it after each part), over the whole world, on
+    /// the stepping thread: for systems that resolve what the substeps left between strands (strand contacts).
+    /// </summary>
+    PassEnd,
+}
+
+/// <summary>
+/// A <see cref="SystemPhase.PassEnd"/> system told when a pass begins, before anything moves (to keep the positions
+/// the pass starts from).
+/// </summary>
+public interface IPassStartListener
+{
+    /// <param name="firstOfFrame">True at a frame's first pass: nothing has moved yet, so the system may still refuse the frame.</param>
+    void PassStarting(HairScene scene, FrameContext ctx, bool firstOfFrame);
 }
 
 /// <summary>A behaviour over the world's data. Systems hold no per-particle state of their own.</summary>
@@ -41,6 +56,14 @@ public sealed class FrameContext
     public GroomScale Scale { get; internal set; }
     /// <summary>The pipeline's dispatcher, for <see cref="SystemPhase.FrameStart"/> systems that fork their own passes.</summary>
     public IThreadDispatcher Dispatcher { get; internal set; } = SequentialDispatcher.Instance;
+
+    internal IStrandMovedListener[] MovedListeners = [];
+
+    /// <summary>For systems outside the substeps: strand s was moved (systems that keep its positions from the last substep take the new ones).</summary>
+    internal void StrandMoved(HairWorld world, int strand)
+    {
+        for (int k = 0; k < MovedListeners.Length; k++) MovedListeners[k].StrandMoved(world, strand);
+    }
 
     internal RigidTransform[] SubstepHeads = new RigidTransform[1];
     internal Collider[] SubstepColliders = [];

@@ -15,6 +15,16 @@ internal interface IStrandResetListener
 }
 
 /// <summary>
+/// A system that keeps per-particle state from one substep to the next (friction's start positions), told when a
+/// system outside the substeps moved a strand (strand contacts at the end of a pass), so it takes the new positions as
+/// where the strand now is rather than as motion of the next substep.
+/// </summary>
+internal interface IStrandMovedListener
+{
+    void StrandMoved(HairWorld world, int strand);
+}
+
+/// <summary>
 /// The end-of-frame containment of non-finite values (issue 15): every substep job scans the positions and velocities of
 /// its own strands right after stepping them (still in its core's cache), a SIMD pass over the six buffers that looks
 /// strand by strand only when the pass finds something. A strand holding a NaN or ±∞ is put back at its rest pose

@@ -2,13 +2,13 @@ namespace HairSim;
 
 /// <summary>
 /// Builds a scene's pipeline from registered system factories, keeping only the systems whose data the
-/// scene has. Order: volume (once per frame, before the substeps), head follow, shape match, integrate, bend, length, collide, mesh collide, segment collide (substeps), then interpolation.
+/// scene has. Order: volume (once per frame, before the substeps), head follow, shape match, integrate, bend, length, collide, mesh collide, segment collide (substeps), strand contacts (after the substeps of each pass), then interpolation.
 /// Other libraries (editing tools, wind, …) add their factories with <see cref="Add"/>.
 /// </summary>
 public sealed class PipelineBuilder
 {
     public const int OrderVolume = 50, OrderHeadFollow = 100, OrderShapeMatch = 200, OrderIntegrate = 300, OrderBend = 350, OrderLength = 400,
-        OrderCollide = 500, OrderMeshCollide = 520, OrderSegmentCollide = 550, OrderInterpolate = 1000;
+        OrderCollide = 500, OrderMeshCollide = 520, OrderSegmentCollide = 550, OrderStrandContact = 800, OrderInterpolate = 1000;
 
     private readonly List<SystemFactory> _factories = new();
 
@@ -62,6 +62,8 @@ public sealed class PipelineBuilder
             s => s.MeshColliders.Count > 0, _ => new Meshes.MeshCollideSystem()));
         b.Add(new SystemFactory(SegmentCollideSystem.SystemName, SystemPhase.Substep, OrderSegmentCollide,
             SegmentCollideSystem.Needed, _ => new SegmentCollideSystem()));
+        b.Add(new SystemFactory(StrandContactSystem.SystemName, SystemPhase.PassEnd, OrderStrandContact,
+            s => s.HasComponent<StrandContactSettings>() && s.World.StrandCount > 1, _ => new StrandContactSystem()));
         b.Add(new SystemFactory(InterpolateSystem.SystemName, SystemPhase.FrameEnd, OrderInterpolate,
             s => s.Render != null, s => new InterpolateSystem(s)));
         FastPathRegistration.Apply(b, allowAvx512);

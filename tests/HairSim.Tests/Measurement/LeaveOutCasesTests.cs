@@ -11,7 +11,8 @@ public class LeaveOutCasesTests
     private static readonly string[] Core =
     [
         VolumeSystem.SystemName, HeadFollowSystem.SystemName, ShapeMatchSystem.SystemName, IntegrateSystem.SystemName, BendSystem.SystemName,
-        LengthSystem.SystemName, CollideSystem.SystemName, HairSim.Meshes.MeshCollideSystem.SystemName, SegmentCollideSystem.SystemName, InterpolateSystem.SystemName,
+        LengthSystem.SystemName, CollideSystem.SystemName, HairSim.Meshes.MeshCollideSystem.SystemName, SegmentCollideSystem.SystemName, StrandContactSystem.SystemName,
+        InterpolateSystem.SystemName,
     ];
 
     /// <summary>What a game character's hair needs with the default settings: no triples, lengths kept by the bend sweep.</summary>
