@@ -57,6 +57,9 @@ public partial class HairSystem3D : Node3D
     private float _volumeStiffness = 8f;
     private float _volumeFriction = 50f;
     private float _volumeMaxStep = 0.125f;
+    private bool _strandContacts = false;
+    private float _contactThickness = 0.25f;
+    private float _contactFriction = 0.3f;
     private int _renderDensity = 1;
     private Color _rootColor = new Color(0.16f, 0.10f, 0.06f, 1f);
     private Color _tipColor = new Color(0.45f, 0.32f, 0.20f, 1f);
@@ -206,6 +209,15 @@ public partial class HairSystem3D : Node3D
     /// <summary>Longest time between volume passes in natural times: 0.125 = once per 60 Hz frame for 25 cm hair; 0.03 keeps layers apart (about 3× the cost).</summary>
     [Export(PropertyHint.Range, "0.01,1,0.005,exp")] public float VolumeMaxStep { get => _volumeMaxStep; set { _volumeMaxStep = value; _settings.VolumeMaxStep = value; Invalidate(); } }
 
+    // ---- Strand contacts ----
+    /// <summary>Strands of different sheets never pass through each other (docs/volume.md); for hair of a few layers, not a full head.</summary>
+    [ExportGroup("Strand Contacts")]
+    [Export] public bool StrandContacts { get => _strandContacts; set { _strandContacts = value; _settings.StrandContacts = value; Invalidate(); } }
+    /// <summary>How far apart layers are kept, in mean segments: 0.25 = a quarter segment.</summary>
+    [Export(PropertyHint.Range, "0.01,2,0.01,exp")] public float ContactThickness { get => _contactThickness; set { _contactThickness = value; _settings.ContactThickness = value; Invalidate(); } }
+    /// <summary>Friction between touching layers (μ): 0.3 = a layer rests on another up to about 17°.</summary>
+    [Export(PropertyHint.Range, "0,2,0.01")] public float ContactFriction { get => _contactFriction; set { _contactFriction = value; _settings.ContactFriction = value; Invalidate(); } }
+
     [ExportGroup("Rendering")]
     [Export(PropertyHint.Range, "0,16,1")] public int RenderDensity { get => _renderDensity; set { _renderDensity = value; _settings.RenderDensity = value; Invalidate(); } }
     [Export] public Color RootColor { get => _rootColor; set { _rootColor = value; _settings.RootColor = value.ToNumerics(); PushLook(); } }
@@ -284,7 +296,8 @@ public partial class HairSystem3D : Node3D
         var head = HeadPose();
         PlaceFollowingColliders();
         float dt = (float)_clock.Step;
-        for (int i = 0; i < steps; i++) _simulation.Step(dt, head);
+        try { for (int i = 0; i < steps; i++) _simulation.Step(dt, head); }
+        catch (Exception e) when (e is ArgumentException or InvalidOperationException) { GD.PushError($"{Name}: {e.Message}"); }
         LastStepMilliseconds = _stepTimer.Elapsed.TotalMilliseconds;
         Draw();
     }
@@ -389,6 +402,7 @@ public partial class HairSystem3D : Node3D
             }
             scene.Render = _settings.ToRender();
             if (_settings.ToVolume() is { } volume) scene.SetComponent(volume);
+            if (_settings.ToContacts() is { } contacts) scene.SetComponent(contacts);
         }
         catch (Exception e) when (e is ArgumentException or System.IO.InvalidDataException)
         {
@@ -417,8 +431,15 @@ public partial class HairSystem3D : Node3D
         _edits = hair.Edits;
         _pendingEdit = null;
         _clock = new FixedStepClock(_settings.FixedStep);
-        // One step so the render strands exist before the first frame is drawn.
-        _simulation.Step((float)_clock.Step, HeadPose());
+        // One step so the render strands exist before the first frame is drawn. Contacts refuse hair packed too densely
+        // for them (a full head): said once, and the hair runs without them.
+        try { _simulation.Step((float)_clock.Step, HeadPose()); }
+        catch (InvalidOperationException e) when (scene.HasComponent<StrandContactSettings>())
+        {
+            GD.PushError($"{Name}: {e.Message} Strand Contacts are off for this hair.");
+            scene.RemoveComponent<StrandContactSettings>();
+            _simulation.Step((float)_clock.Step, HeadPose());
+        }
         _renderer ??= FindRenderer() ?? CreateRenderer();
         _renderer.Bind(scene.RenderOutput!, _settings.ToLook(), RootColor, TipColor);
         Draw();

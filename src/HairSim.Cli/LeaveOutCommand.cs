@@ -175,7 +175,9 @@ public static class LeaveOutCommand
           its work: the source's shape matching (α = 0 outside its own model) computes every goal and moves nothing;
           the bend sweep under another bend model, the length pass whose work the bend sweep already did, and the
           collide system with no collider return at once; interpolation fills render strands; the volume system builds
-          its whole grid and every push with zero stiffness and friction, and changes nothing.
+          its whole grid and every push with zero stiffness and friction, and changes nothing; the strand-contact system
+          boxes every segment and files the boxes in its grid once per pass, and stops there (on a groom this dense the
+          contacts themselves refuse to run: docs/volume.md).
 
         Both give the same particle bits (`LeaveOutCasesTests`, every case, both solver paths), so the difference in
         time is what leaving out saves, and nothing else changes. All simulations of one thread count are stepped in

@@ -174,6 +174,7 @@ public static class ReportCommand
             }
         var reference = CrossingSheets.Run(new VolumeSettings(), SolverPath.Reference, 60);
         md.Append(F($"\nReference path (double precision), defaults, 25 cm at 60 Hz: B at or below A at {reference.Sunk} of {reference.Crossings}, in A's layer at {reference.InLayer}, mean gap {Gap(reference)}, {reference.PartsPerFrame:F2} passes per frame.\n"));
+        ContactSection(md, threads);
         // What the defaults cost in passes on the reference groom: the head shake that leave-out times.
         {
             var scene = GroomBuilder.BuildScene(GroomSettings.Reference(), new SimulationSettings());
@@ -183,6 +184,64 @@ public static class ReportCommand
             const int frames = 300;
             for (int f = 1; f <= frames; f++) { sim.Step(1f / 60, HeadMotion.Shake(f / 60f)); parts += sim.Pipeline.LastFrameParts; most = Math.Max(most, sim.Pipeline.LastFrameParts); }
             md.Append(F($"\nThe reference groom with the defaults under the head shake `leave-out` times (5 s at 60 Hz): {(double)parts / frames:F2} volume passes per frame on average, at most {most}.\n"));
+        }
+        static string Gap(CrossingResult r) => double.IsNaN(r.MeanGap) ? "–" : F($"{r.MeanGap * 100:F1} %");
+    }
+
+    /// <summary>
+    /// Strand contacts (<see cref="StrandContactSettings"/>) on the crossing sheets, alone and with volume, against the
+    /// same runs without them; their cost on small grooms under the head shake; and the reference groom's refusal.
+    /// </summary>
+    private static void ContactSection(StringBuilder md, IThreadDispatcher threads)
+    {
+        md.Append("\nStrand contacts (`StrandContactSettings` defaults: thickness a quarter of the mean segment, 1/60 of the strand length here; docs/volume.md) on the same crossing sheets, alone and with the default volume. B in A's layer: less than 1 % of the length above it, as above. Length error: the worst |length / rest length − 1| over every segment at the end, with contacts and in the same run without them (the floor's friction, applied after the length pass, leaves most of it either way). Run time: milliseconds per frame of the whole run, without and with contacts (fast path, the machine's threads; the scene has 40 strands, so this is mostly the contacts' own cost).\n\n");
+        md.Append("| strand length | frame rate | contacts: B at or below A | contacts: B in A's layer | contacts: mean gap | contacts and volume: B at or below A | contacts and volume: B in A's layer | length error, contacts (without) | length error, contacts and volume (volume alone) | ms per frame without / with contacts |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        foreach (float scale in new[] { 0.04f, 1f, 40f })
+            foreach (int hz in new[] { 30, 60, 240 })
+            {
+                int frames = (int)Math.Ceiling(3.0 * Math.Sqrt(scale) * hz);
+                var clock = System.Diagnostics.Stopwatch.StartNew();
+                var plain = CrossingSheets.Run(null, SolverPath.Fast, hz, scale: scale, dispatcher: threads);
+                double plainMs = clock.Elapsed.TotalMilliseconds / frames;
+                clock.Restart();
+                var on = CrossingSheets.Run(null, SolverPath.Fast, hz, scale: scale, dispatcher: threads, contacts: new StrandContactSettings());
+                double onMs = clock.Elapsed.TotalMilliseconds / frames;
+                var volume = CrossingSheets.Run(new VolumeSettings(), SolverPath.Fast, hz, scale: scale, dispatcher: threads);
+                var both = CrossingSheets.Run(new VolumeSettings(), SolverPath.Fast, hz, scale: scale, dispatcher: threads, contacts: new StrandContactSettings());
+                md.Append(F($"| {0.25 * scale * 100:0.##} cm | {hz} Hz | {on.Sunk} of {on.Crossings} | {on.InLayer} | {Gap(on)} | {both.Sunk} of {both.Crossings} | {both.InLayer} | {on.LengthError * 100:F2} % ({plain.LengthError * 100:F2} %) | {both.LengthError * 100:F2} % ({volume.LengthError * 100:F2} %) | {plainMs:F3} / {onMs:F3} |\n"));
+            }
+        var reference = CrossingSheets.Run(null, SolverPath.Reference, 60, contacts: new StrandContactSettings());
+        var referenceBoth = CrossingSheets.Run(new VolumeSettings(), SolverPath.Reference, 60, contacts: new StrandContactSettings());
+        md.Append(F($"\nReference path (double precision), 25 cm at 60 Hz: contacts alone, B at or below A at {reference.Sunk} of {reference.Crossings}, in A's layer at {reference.InLayer}; with volume too, {referenceBoth.Sunk} of {referenceBoth.Crossings} and {referenceBoth.InLayer}.\n"));
+
+        md.Append("\nWhat contacts cost on small grooms (`GroomSettings` with few sheets, 16 particles, under the head shake `leave-out` times, 2 s at 60 Hz after 2 s to settle, fast path, the machine's threads), and the candidate segment pairs of the last pass. Contacts test every pair of segments of different sheets whose boxes overlap: the cost grows with the pairs, so they suit hair of a few layers; a full head of hair is refused.\n\n");
+        md.Append("| groom | strands | ms per frame without contacts | with contacts | candidate pairs | pairs pushed |\n|---|---:|---:|---:|---:|---:|\n");
+        foreach (var (sheets, per) in new[] { (6, 10), (12, 10), (24, 9) })
+        {
+            double Run(bool contacts, out ContactPass pass)
+            {
+                var scene = GroomBuilder.BuildScene(new GroomSettings { SheetCount = sheets, StrandsPerSheet = per }, new SimulationSettings());
+                scene.Render = new RenderSettings();
+                if (contacts) scene.SetComponent(new StrandContactSettings());
+                var sim = new HairSimulation(scene, dispatcher: threads);
+                float t = 0f;
+                for (int f = 0; f < 120; f++) sim.Step(1f / 60, HeadMotion.Shake(t += 1f / 60));
+                var clock = System.Diagnostics.Stopwatch.StartNew();
+                for (int f = 0; f < 120; f++) sim.Step(1f / 60, HeadMotion.Shake(t += 1f / 60));
+                double ms = clock.Elapsed.TotalMilliseconds / 120;
+                pass = sim.Pipeline.Systems.OfType<StrandContactSystem>().FirstOrDefault()?.LastPass ?? default;
+                return ms;
+            }
+            double off = Run(false, out _), with = Run(true, out var last);
+            md.Append(F($"| {sheets} sheets × {per} strands | {sheets * per} | {off:F3} | {with:F3} | {last.Candidates} | {last.Pushed} |\n"));
+        }
+        {
+            var scene = GroomBuilder.BuildScene(GroomSettings.Reference(), new SimulationSettings());
+            scene.SetComponent(new StrandContactSettings());
+            string refused;
+            try { new HairSimulation(scene, dispatcher: threads).Step(1f / 60); refused = "not refused"; }
+            catch (InvalidOperationException e) { refused = e.Message; }
+            md.Append(F($"\nThe reference groom ({scene.World.StrandCount} strands in {scene.World.SheetCount} sheets) with contacts, at the first frame, nothing moved: \"{refused}\"\n"));
         }
         static string Gap(CrossingResult r) => double.IsNaN(r.MeanGap) ? "–" : F($"{r.MeanGap * 100:F1} %");
     }

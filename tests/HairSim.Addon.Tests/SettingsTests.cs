@@ -60,6 +60,22 @@ public class SettingsTests
     }
 
     [Fact]
+    public void Strand_contacts_are_off_by_default_and_carry_the_library_s_defaults_when_on()
+    {
+        var s = new HairNodeSettings();
+        Assert.Null(s.ToContacts());
+        s.StrandContacts = true;
+        var c = s.ToContacts()!;
+        var lib = new StrandContactSettings();
+        Assert.Equal((lib.Thickness, lib.Friction), (c.Thickness, c.Friction));
+        s.ContactThickness = 0f; s.ContactFriction = float.NaN;
+        var problems = s.Validate();
+        foreach (var name in new[] { "Contact Thickness", "Contact Friction" })
+            Assert.Contains(problems, p => p.StartsWith(name, StringComparison.Ordinal));
+        Assert.Throws<HairSettingsException>(() => s.ToContacts());
+    }
+
+    [Fact]
     public void Too_many_particles_is_refused_before_anything_is_allocated()
     {
         var s = new HairNodeSettings { Sheets = 100_000, StrandsPerSheet = 4096, ParticlesPerStrand = 16 };

@@ -47,6 +47,12 @@ public sealed class HairNodeSettings
     public float VolumeFriction { get; set; } = 50f;
     /// <summary>Longest time between volume passes in natural times: 0.125 = one per 60 Hz frame for 25 cm hair; 0.03 keeps layers apart at about 3× the cost.</summary>
     public float VolumeMaxStep { get; set; } = 0.125f;
+    /// <summary>Strand contacts (docs/volume.md): strands of different sheets never pass through each other. Off by default; for hair of a few layers, not a full head.</summary>
+    public bool StrandContacts { get; set; }
+    /// <summary>How far apart layers are kept, in mean segments: 0.25 = a quarter segment.</summary>
+    public float ContactThickness { get; set; } = 0.25f;
+    /// <summary>Friction between touching layers (μ): 0.3 = a layer rests on another up to about 17°.</summary>
+    public float ContactFriction { get; set; } = 0.3f;
     /// <summary>Interpolated render strands between neighbouring simulated strands.</summary>
     public int RenderDensity { get; set; } = 1;
     public Vector4 RootColor { get; set; } = new(0.16f, 0.10f, 0.06f, 1f);
@@ -93,6 +99,8 @@ public sealed class HairNodeSettings
         FloatRange(p, "Volume Stiffness", VolumeStiffness, 0f, 1000f);
         FloatRange(p, "Volume Friction", VolumeFriction, 0f, 1000f);
         FloatRange(p, "Volume Max Step", VolumeMaxStep, 0.01f, 100f);
+        FloatRange(p, "Contact Thickness", ContactThickness, 0.01f, 10f);
+        FloatRange(p, "Contact Friction", ContactFriction, 0f, 10f);
         IntRange(p, "Render Density", RenderDensity, 0, RenderSettings.MaxStrandsPerGap);
         Color(p, "Root Color", RootColor);
         Color(p, "Tip Color", TipColor);
@@ -178,6 +186,16 @@ public sealed class HairNodeSettings
         var v = new VolumeSettings { Stiffness = VolumeStiffness, Friction = VolumeFriction, MaxStep = VolumeMaxStep };
         v.Validate();
         return v;
+    }
+
+    /// <summary>The strand-contact component to put on the scene, or null when Strand Contacts is off.</summary>
+    public StrandContactSettings? ToContacts()
+    {
+        ThrowIfInvalid();
+        if (!StrandContacts) return null;
+        var c = new StrandContactSettings { Thickness = ContactThickness, Friction = ContactFriction };
+        c.Validate();
+        return c;
     }
 
     public RenderSettings ToRender()

@@ -37,8 +37,9 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
     // Per segment: its first particle, its sheet, its strand and its box (low corner, high corner).
     private int[] _segFirst = [], _segSheet = [], _segStrand = [];
     private float[] _box = [];
-    // Strands a sweep moved, whose segments are brought back to their rest lengths after it.
-    private bool[] _moved = [];
+    // Strands the last sweep moved, whose segments are brought back to their rest lengths after it; and strands moved
+    // at all in this pass (only their pairs can have been moved into a crossing by putting lengths right).
+    private bool[] _moved = [], _touched = [];
     private int[] _cellStart = [], _entries = [];
     private int[] _pairs = [], _active = [];
     // Per candidate pair (first sweep): its contact distance, D or the pair's distance at rest if that is less.
@@ -123,7 +124,7 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
             LastPass = new ContactPass(_pairCount, 0, 0, Overloaded: true);
             return;
         }
-        if (_moved.Length < w.StrandCount) _moved = new bool[w.StrandCount];
+        if (_moved.Length < w.StrandCount) { _moved = new bool[w.StrandCount]; _touched = new bool[w.StrandCount]; }
         bool lengths = ctx.Settings.Length != LengthMode.None;
         int pushed = 0, crossed = 0;
         // Each sweep is followed by lengths and colliders put right, which can move a strand into another. Sweeps that
@@ -141,6 +142,7 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
             if (Sweep(w, d, settings.Friction, settings.Restitution, first: false, crossingsOnly: true).Pushed == 0) break;
             Settle(scene, ctx, lengths && round < FinalRounds - 1);
         }
+        Array.Clear(_touched, 0, w.StrandCount);
         LastPass = new ContactPass(_pairCount, pushed, crossed);
     }
 
@@ -279,8 +281,8 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
     /// </summary>
     private (int Pushed, int Crossed) Sweep(HairWorld w, double d, double mu, double restitution, bool first, bool crossingsOnly)
     {
-        // The sweeps that only undo crossings go over every candidate: putting lengths right may have moved a pair that was
-        // far apart at the first sweep into a crossing.
+        // The sweeps that only undo crossings go over every candidate of a strand moved in this pass: putting lengths
+        // right may have moved a pair that was far apart at the first sweep into a crossing.
         bool all = first || crossingsOnly;
         int pushed = 0, crossings = 0, kept = 0, count = all ? _pairCount : _activeCount;
         if (first && _active.Length < _pairCount) { _active = new int[Math.Max(_pairCount, 2 * _active.Length)]; _pairD = new double[_active.Length]; }
@@ -292,6 +294,7 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
             int i = _segFirst[a], j = _segFirst[b];
             double wi = im[i], wi1 = im[i + 1], wj = im[j], wj1 = im[j + 1];
             if (wi + wi1 + wj + wj1 == 0) continue;
+            if (crossingsOnly && !_touched[_segStrand[a]] && !_touched[_segStrand[b]]) continue;
             var p0 = (px[i], py[i], pz[i]); var p1 = (px[i + 1], py[i + 1], pz[i + 1]);
             var q0 = (px[j], py[j], pz[j]); var q1 = (px[j + 1], py[j + 1], pz[j + 1]);
             ClosestPoints(p0, p1, q0, q1, out double s, out double t);
@@ -373,6 +376,7 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
         {
             if (!_moved[s]) continue;
             _moved[s] = false;
+            _touched[s] = true;
             int first = w.StrandFirst[s], end = first + w.StrandParticleCount[s];
             if (lengths)
                 for (int i = first + 1; i < end; i++)
