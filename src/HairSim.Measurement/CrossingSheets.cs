@@ -100,6 +100,36 @@ public static class CrossingSheets
         return new CrossingResult(crossings, sunk, crossings > 0 ? gaps / crossings / length : double.NaN, w.CountNonFinite(), InLayer: inLayer, LengthError: worst);
     }
 
+    /// <summary>
+    /// The sheets seen along A's strands (x): A's strands end-on, as short dark marks along z, and B's strands as blue
+    /// lines across them; heights exaggerated <paramref name="stretch"/> times so a layer a hundredth of the length thick
+    /// shows. An SVG picture, <paramref name="title"/> on top.
+    /// </summary>
+    public static string SideView(HairWorld w, float length, string title, float stretch = 8f)
+    {
+        const float width = 640f, height = 220f, left = 20f, right = 20f, top = 28f, bottom = 20f;
+        float z0 = -0.55f * length, z1 = 0.55f * length, y0 = -0.01f * length, y1 = 0.01f * length + (height - top - bottom) / (width - left - right) * (z1 - z0) / stretch;
+        var ic = System.Globalization.CultureInfo.InvariantCulture;
+        string X(float z) => (left + (z - z0) / (z1 - z0) * (width - left - right)).ToString("F1", ic);
+        string Y(float y) => (height - bottom - (Math.Clamp(y, y0, y1) - y0) / (y1 - y0) * (height - top - bottom)).ToString("F1", ic);
+        var sb = new System.Text.StringBuilder();
+        sb.Append($"<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n");
+        sb.Append($"<rect width=\"{width}\" height=\"{height}\" fill=\"white\"/>\n");
+        sb.Append($"<text x=\"{left}\" y=\"18\" font-family=\"sans-serif\" font-size=\"13\">{System.Security.SecurityElement.Escape(title)}</text>\n");
+        sb.Append($"<line x1=\"{left}\" y1=\"{Y(0f)}\" x2=\"{width - right}\" y2=\"{Y(0f)}\" stroke=\"#bbb\" stroke-dasharray=\"4 3\"/>\n");
+        for (int s = Strands; s < 2 * Strands; s++) Polyline(sb, w, s, "#2563eb", 1.2f, X, Y);
+        for (int s = 0; s < Strands; s++) Polyline(sb, w, s, "#111", 2.5f, X, Y);
+        sb.Append("</svg>\n");
+        return sb.ToString();
+    }
+
+    private static void Polyline(System.Text.StringBuilder sb, HairWorld w, int s, string colour, float stroke, Func<float, string> x, Func<float, string> y)
+    {
+        sb.Append("<polyline fill=\"none\" stroke=\"").Append(colour).Append("\" stroke-width=\"").Append(stroke.ToString(System.Globalization.CultureInfo.InvariantCulture)).Append("\" points=\"");
+        foreach (var p in w.GetStrandPositions(s)) sb.Append(x(p.Z)).Append(',').Append(y(p.Y)).Append(' ');
+        sb.Append("\"/>\n");
+    }
+
     // Whether segments p0p1 and q0q1 cross in the xz plane, and where along each (0 … 1).
     private static bool Cross(Vector3 p0, Vector3 p1, Vector3 q0, Vector3 q1, out float s, out float t)
     {
