@@ -315,7 +315,7 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
                 // Strands closer than D at rest (sheets that meet at the roots) are kept only as far apart as they grew.
                 dp = near ? Math.Min(d, RestDistance(w, i, j)) : d;
                 _pairD[k] = dp;
-                if (crossed || near) _active[kept++] = k;
+                if (crossed || near && n2 < NearShare * NearShare * dp * dp) _active[kept++] = k;
             }
             else dp = _pairD[k];
             if (crossed) dist = nx * dx + ny * dy + nz * dz;
