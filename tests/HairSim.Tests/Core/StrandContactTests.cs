@@ -137,16 +137,7 @@ public class StrandContactTests
     }
 
     [Theory]
-    [InlineData(SolverPath.Fast, 30, 0.04f)]
-    [InlineData(SolverPath.Fast, 60, 0.04f)]
-    [InlineData(SolverPath.Fast, 240, 0.04f)]
-    [InlineData(SolverPath.Fast, 30, 1f)]
-    [InlineData(SolverPath.Fast, 60, 1f)]
-    [InlineData(SolverPath.Fast, 240, 1f)]
-    [InlineData(SolverPath.Fast, 30, 40f)]
-    [InlineData(SolverPath.Fast, 60, 40f)]
-    [InlineData(SolverPath.Fast, 240, 40f)]
-    [InlineData(SolverPath.Reference, 60, 1f)]
+    [MemberData(nameof(CrossingSheetCases.EveryScaleAndRate), MemberType = typeof(CrossingSheetCases))]
     [InlineData(SolverPath.Reference, 30, 0.04f)]
     public void With_contacts_no_crossing_ends_with_the_upper_sheet_at_or_below_the_lower(SolverPath path, int hz, float scale)
     {

@@ -215,16 +215,7 @@ public class VolumeTests
     }
 
     [Theory]
-    [InlineData(SolverPath.Fast, 30, 0.04f)]
-    [InlineData(SolverPath.Fast, 60, 0.04f)]
-    [InlineData(SolverPath.Fast, 240, 0.04f)]
-    [InlineData(SolverPath.Fast, 30, 1f)]
-    [InlineData(SolverPath.Fast, 60, 1f)]
-    [InlineData(SolverPath.Fast, 240, 1f)]
-    [InlineData(SolverPath.Fast, 30, 40f)]
-    [InlineData(SolverPath.Fast, 60, 40f)]
-    [InlineData(SolverPath.Fast, 240, 40f)]
-    [InlineData(SolverPath.Reference, 60, 1f)]
+    [MemberData(nameof(CrossingSheetCases.EveryScaleAndRate), MemberType = typeof(CrossingSheetCases))]
     public void With_the_default_volume_a_dropped_sheet_rests_on_the_crossing_sheet(SolverPath path, int hz, float scale)
     {
         // Default settings, 1 cm, 25 cm and 10 m strands: the falling sheet is stopped by friction and held about a
