@@ -297,10 +297,7 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
             if (crossingsOnly && !_touched[_segStrand[a]] && !_touched[_segStrand[b]]) continue;
             var p0 = (px[i], py[i], pz[i]); var p1 = (px[i + 1], py[i + 1], pz[i + 1]);
             var q0 = (px[j], py[j], pz[j]); var q1 = (px[j + 1], py[j + 1], pz[j + 1]);
-            ClosestPoints(p0, p1, q0, q1, out double s, out double t);
-            double nx = Lerp(q0.Item1, q1.Item1, t) - Lerp(p0.Item1, p1.Item1, s);
-            double ny = Lerp(q0.Item2, q1.Item2, t) - Lerp(p0.Item2, p1.Item2, s);
-            double nz = Lerp(q0.Item3, q1.Item3, t) - Lerp(p0.Item3, p1.Item3, s);
+            Gap(p0, p1, q0, q1, out double s, out double t, out double nx, out double ny, out double nz);
             double n2 = nx * nx + ny * ny + nz * nz;
             double dx = 0, dy = 0, dz = 0, dist;
             // Two segments can only have met during the pass if they are now no farther apart than their particles
@@ -497,8 +494,7 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
     private bool MeetAt(int i, int j, HairWorld w, double tau, double d)
     {
         var p0 = Between(w, i, tau); var p1 = Between(w, i + 1, tau); var q0 = Between(w, j, tau); var q1 = Between(w, j + 1, tau);
-        ClosestPoints(p0, p1, q0, q1, out double s, out double t);
-        double x = Lerp(q0.X, q1.X, t) - Lerp(p0.X, p1.X, s), y = Lerp(q0.Y, q1.Y, t) - Lerp(p0.Y, p1.Y, s), z = Lerp(q0.Z, q1.Z, t) - Lerp(p0.Z, p1.Z, s);
+        Gap(p0, p1, q0, q1, out _, out _, out double x, out double y, out double z);
         return x * x + y * y + z * z < 1e-6 * d * d;
     }
 
@@ -531,10 +527,7 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
     {
         var p0 = (w.RestX[i], w.RestY[i], w.RestZ[i]); var p1 = (w.RestX[i + 1], w.RestY[i + 1], w.RestZ[i + 1]);
         var q0 = (w.RestX[j], w.RestY[j], w.RestZ[j]); var q1 = (w.RestX[j + 1], w.RestY[j + 1], w.RestZ[j + 1]);
-        ClosestPoints(p0, p1, q0, q1, out double s, out double t);
-        double x = Lerp(q0.Item1, q1.Item1, t) - Lerp(p0.Item1, p1.Item1, s);
-        double y = Lerp(q0.Item2, q1.Item2, t) - Lerp(p0.Item2, p1.Item2, s);
-        double z = Lerp(q0.Item3, q1.Item3, t) - Lerp(p0.Item3, p1.Item3, s);
+        Gap(p0, p1, q0, q1, out _, out _, out double x, out double y, out double z);
         return Math.Sqrt(x * x + y * y + z * z);
     }
 
@@ -553,6 +546,16 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
     private static double Lerp(double a, double b, double u) => a + u * (b - a);
     private static float Min4(float a, float b, float c, float d) => MathF.Min(MathF.Min(a, b), MathF.Min(c, d));
     private static float Max4(float a, float b, float c, float d) => MathF.Max(MathF.Max(a, b), MathF.Max(c, d));
+
+    /// <summary>The closest points of segments p0p1 and q0q1 (parameters s, t) and the vector from the first to the second.</summary>
+    private static void Gap((double X, double Y, double Z) p0, (double X, double Y, double Z) p1, (double X, double Y, double Z) q0, (double X, double Y, double Z) q1,
+        out double s, out double t, out double x, out double y, out double z)
+    {
+        ClosestPoints(p0, p1, q0, q1, out s, out t);
+        x = Lerp(q0.X, q1.X, t) - Lerp(p0.X, p1.X, s);
+        y = Lerp(q0.Y, q1.Y, t) - Lerp(p0.Y, p1.Y, s);
+        z = Lerp(q0.Z, q1.Z, t) - Lerp(p0.Z, p1.Z, s);
+    }
 
     /// <summary>
     /// The parameters (0 … 1) of the closest points of segments p0p1 and q0q1 (Ericson, Real-Time Collision Detection,
