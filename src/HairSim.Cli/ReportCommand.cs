@@ -185,7 +185,6 @@ public static class ReportCommand
             for (int f = 1; f <= frames; f++) { sim.Step(1f / 60, HeadMotion.Shake(f / 60f)); parts += sim.Pipeline.LastFrameParts; most = Math.Max(most, sim.Pipeline.LastFrameParts); }
             md.Append(F($"\nThe reference groom with the defaults under the head shake `leave-out` times (5 s at 60 Hz): {(double)parts / frames:F2} volume passes per frame on average, at most {most}.\n"));
         }
-        static string Gap(CrossingResult r) => double.IsNaN(r.MeanGap) ? "–" : F($"{r.MeanGap * 100:F1} %");
     }
 
     /// <summary>
@@ -253,8 +252,10 @@ public static class ReportCommand
             catch (InvalidOperationException e) { refused = e.Message; }
             md.Append(F($"\nThe reference groom ({scene.World.StrandCount} strands in {scene.World.SheetCount} sheets) with contacts, at the first frame, nothing moved: \"{refused}\"\n"));
         }
-        static string Gap(CrossingResult r) => double.IsNaN(r.MeanGap) ? "–" : F($"{r.MeanGap * 100:F1} %");
     }
+
+    /// <summary>B's mean height above A at the crossings, as a share of the strand length ("–" without crossings).</summary>
+    private static string Gap(CrossingResult r) => double.IsNaN(r.MeanGap) ? "–" : F($"{r.MeanGap * 100:F1} %");
 
     private static string Group(SolverConfiguration c) => c.Bend switch
     {

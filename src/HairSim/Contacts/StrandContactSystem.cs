@@ -107,8 +107,9 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
         // Without the component (a pipeline that keeps every system): the segments' boxes and grid, and nothing moved.
-        var settings = scene.GetComponent<StrandContactSettings>() ?? InertSettings;
-        bool inert = !scene.HasComponent<StrandContactSettings>();
+        var own = scene.GetComponent<StrandContactSettings>();
+        bool inert = own == null;
+        var settings = own ?? InertSettings;
         settings.Validate();
         LastPass = default;
         var w = scene.World;
@@ -276,8 +277,8 @@ public sealed class StrandContactSystem : IHairSystem, IPassStartListener, IStra
 
     /// <summary>
     /// One Gauss–Seidel sweep: the pairs pushed, and of those, the ones that had crossed. The first sweep goes over every
-    /// candidate and keeps the pairs within <see cref="NearShare"/> × D (or crossed) for the later sweeps and the
-    /// velocity step: the pushes of a pass move hair by about D, so pairs farther apart are left as they are.
+    /// candidate and keeps the pairs within <see cref="NearShare"/> × their contact distance (or crossed) for the later
+    /// sweeps: the pushes of a pass move hair by about D, so pairs farther apart are left as they are.
     /// </summary>
     private (int Pushed, int Crossed) Sweep(HairWorld w, double d, double mu, double restitution, bool first, bool crossingsOnly)
     {
