@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.Intrinsics;
+using System.Runtime.Intrinsics.X86;
 
 namespace HairSim.Fast;
 
@@ -46,9 +47,11 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     // of them with the cell it was measured on, for the next part's length.
     private readonly float[] _jobCurvature = new float[MaxJobs];
     private float _curvature, _cell;
-    // Per particle of the sample strands: D and S interpolated there (zeros where nothing was sampled), so a particle's
-    // change is Σ t·(D − S·v) over its two samples.
+    // Per particle of the sample strands, packed sample after sample (sample strand s from _sampleAt[s]): D and S
+    // interpolated there (zeros where nothing was sampled), so a particle's change is Σ t·(D − S·v) over its two samples.
+    // Packed, they take a quarter of the cache that particle-indexed buffers took between the substeps' data.
     private float[] _pushX = [], _pushY = [], _pushZ = [], _share = [];
+    private int[] _sampleAt = [];
     private int _every;
     private readonly Action<int> _boundsJob, _splatJob, _reduceJob, _gradientJob, _gatherJob;
 
@@ -66,6 +69,12 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     }
 
     public VolumeGrid Grid => _grid;
+
+    /// <summary>
+    /// Splat and sample eight particles at a time (where AVX is there); false takes them one by one, with the same bits
+    /// (for tests).
+    /// </summary>
+    internal bool Lanes { get; set; } = Avx.IsSupported;
 
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
@@ -110,9 +119,11 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         _maxPush = (float)(VolumeSettings.MaxPushPerPass * _grid.Cell / dt);
         _friction = (float)(1.0 - Math.Exp(-settings.Friction * dt / ctx.Scale.NaturalTime));
         _inert = settings.IsInert;
-        if (_share.Length != w.ParticleCount)
+        int packed = PackSamples(w);
+        if (_share.Length < packed)
         {
-            int np = w.ParticleCount;
+            // Room to grow, as for the grid (an edit rarely lengthens the samples).
+            int np = packed + packed / 4;
             _pushX = new float[np]; _pushY = new float[np]; _pushZ = new float[np]; _share = new float[np];
         }
 
@@ -127,6 +138,20 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         for (int j = 0; j < _nodeJobs; j++) curvature = MathF.Max(curvature, _jobCurvature[j]);
         _curvature = curvature; _cell = _grid.Cell;
         dispatcher.Run(_sheetJobs, _gatherJob);
+    }
+
+    /// <summary>Where each sample strand's particles start in the packed buffers; how many particles the samples hold.</summary>
+    private int PackSamples(HairWorld w)
+    {
+        if (_sampleAt.Length != w.StrandCount) _sampleAt = new int[w.StrandCount];
+        int at = 0;
+        for (int q = 0; q < w.SheetCount; q++)
+            for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j = VolumeSampling.Next(j, count, _every))
+            {
+                _sampleAt[first + j] = at;
+                at += w.StrandParticleCount[first + j];
+            }
+        return at;
     }
 
     private (int Begin, int End) Sheets(int job, int jobs)
@@ -145,9 +170,8 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         var min = new Vector3(float.PositiveInfinity); var max = new Vector3(float.NegativeInfinity);
         ref float px = ref w.PosX[0], py = ref w.PosY[0], pz = ref w.PosZ[0];
         for (int q = sheetBegin; q < sheetEnd; q++)
-        for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j++)
+        for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j = VolumeSampling.Next(j, count, _every))
         {
-            if (!VolumeSampling.IsSample(j, count, _every)) continue;
             int s = first + j;
             int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s];
             for (; i + 8 <= e; i += 8)
@@ -170,52 +194,116 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         _min[job] = min; _max[job] = max;
     }
 
-    private void SplatJob(int partition)
+    [SkipLocalsInit]
+    private unsafe void SplatJob(int partition)
     {
         var w = _w;
         var (sheetBegin, sheetEnd) = Sheets(partition, Partitions);
         var g = _grid;
-        var origin = g.Origin; float inv = g.InvCell;
-        float hx = g.Nx - 1.001f, hy = g.Ny - 1.001f, hz = g.Nz - 1.001f;
+        var lanes = new CellLanes(g);
         int sy = g.Nx, sz = g.Nx * g.Ny;
         ref var nodes = ref _splat[partition][0];
         float[] posX = w.PosX, posY = w.PosY, posZ = w.PosZ, velX = w.VelX, velY = w.VelY, velZ = w.VelZ, invMass = w.InvMass;
         int[] strandFirst = w.StrandFirst, strandCount = w.StrandParticleCount;
+        int* cell = stackalloc int[CellLanes.Lanes];
+        float* corner = stackalloc float[8 * CellLanes.Lanes];
+        float* momentum = stackalloc float[3 * CellLanes.Lanes];
+        bool lanesOn = Lanes;
         for (int q = sheetBegin; q < sheetEnd; q++)
-        for (int j = 0, first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q]; j < count; j++)
         {
-            if (!VolumeSampling.IsSample(j, count, _every)) continue;
+            int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q];
             float weight = (float)VolumeSampling.Weight(count, _every);
-            int s = first + j;
-            int i = strandFirst[s], e = i + strandCount[s];
-            if ((uint)e > (uint)posX.Length || (uint)e > (uint)velX.Length || (uint)e > (uint)invMass.Length
-                || (uint)e > (uint)posY.Length || (uint)e > (uint)posZ.Length || (uint)e > (uint)velY.Length || (uint)e > (uint)velZ.Length || i < 0)
-                throw new InvalidOperationException("Strand outside the particle arrays.");
-            for (; i < e; i++)
+            for (int j = 0; j < count; j = VolumeSampling.Next(j, count, _every))
             {
-                float px = Unsafe.Add(ref posX[0], i), py = Unsafe.Add(ref posY[0], i), pz = Unsafe.Add(ref posZ[0], i);
-                float vx = Unsafe.Add(ref velX[0], i), vy = Unsafe.Add(ref velY[0], i), vz = Unsafe.Add(ref velZ[0], i);
-                if (Unsafe.Add(ref invMass[0], i) == 0f)
+                int s = first + j;
+                int i = strandFirst[s], e = i + strandCount[s];
+                if ((uint)e > (uint)posX.Length || (uint)e > (uint)velX.Length || (uint)e > (uint)invMass.Length
+                    || (uint)e > (uint)posY.Length || (uint)e > (uint)posZ.Length || (uint)e > (uint)velY.Length || (uint)e > (uint)velZ.Length || i < 0)
+                    throw new InvalidOperationException("Strand outside the particle arrays.");
+                FetchAhead(w, s + 2 * _every, roots: true);
+                // Eight particles at a time: their cells and weights side by side, then each lane's adds (the same bits
+                // as one particle at a time, which the strand's last few take).
+                for (; lanesOn && i + CellLanes.Lanes <= e; i += CellLanes.Lanes)
                 {
-                    // A pinned root takes up room and moves with the head (its velocity buffer reads zero).
-                    var v = VolumeSystem.ParticleVelocity(w, i, _ctx);
-                    vx = v.X; vy = v.Y; vz = v.Z;
+                    var px = Load(posX, i); var py = Load(posY, i); var pz = Load(posZ, i);
+                    var vx = Load(velX, i); var vy = Load(velY, i); var vz = Load(velZ, i);
+                    if (Vector256.EqualsAny(Load(invMass, i), Vector256<float>.Zero))
+                    {
+                        // A pinned root takes up room and moves with the head (its velocity buffer reads zero).
+                        vx.Store(momentum); vy.Store(momentum + 8); vz.Store(momentum + 16);
+                        for (int l = 0; l < CellLanes.Lanes; l++)
+                        {
+                            if (invMass[i + l] != 0f) continue;
+                            var v = VolumeSystem.ParticleVelocity(w, i + l, _ctx);
+                            momentum[l] = v.X; momentum[8 + l] = v.Y; momentum[16 + l] = v.Z;
+                        }
+                        vx = Vector256.Load(momentum); vy = Vector256.Load(momentum + 8); vz = Vector256.Load(momentum + 16);
+                    }
+                    uint live = CellLanes.Finite(px + py + pz + vx + vy + vz);
+                    if (live == 0) continue;
+                    lanes.Cells(px, py, pz, cell, corner);
+                    var vw = Vector256.Create(weight);
+                    (vw * vx).Store(momentum); (vw * vy).Store(momentum + 8); (vw * vz).Store(momentum + 16);
+                    for (int l = 0; l < CellLanes.Lanes; l++)
+                    {
+                        if ((live & (1u << l)) == 0) continue;
+                        var value = Vector128.Create(weight, momentum[l], momentum[8 + l], momentum[16 + l]);
+                        ref var n0 = ref Unsafe.Add(ref nodes, cell[l]);
+                        Add(ref n0, value, corner[l]); Add(ref Unsafe.Add(ref n0, 1), value, corner[8 + l]);
+                        ref var n1 = ref Unsafe.Add(ref n0, sy);
+                        Add(ref n1, value, corner[16 + l]); Add(ref Unsafe.Add(ref n1, 1), value, corner[24 + l]);
+                        ref var n2 = ref Unsafe.Add(ref n0, sz);
+                        Add(ref n2, value, corner[32 + l]); Add(ref Unsafe.Add(ref n2, 1), value, corner[40 + l]);
+                        ref var n3 = ref Unsafe.Add(ref n2, sy);
+                        Add(ref n3, value, corner[48 + l]); Add(ref Unsafe.Add(ref n3, 1), value, corner[56 + l]);
+                    }
                 }
-                if (!float.IsFinite(px + py + pz + vx + vy + vz)) continue;
-                int b = Cell(px, py, pz, origin, inv, hx, hy, hz, sy, sz, out float fx, out float fy, out float fz);
-                var value = Vector128.Create(weight, weight * vx, weight * vy, weight * vz);
-                float gx = 1f - fx, gy = 1f - fy, gz = 1f - fz;
-                float w00 = gy * gz, w10 = fy * gz, w01 = gy * fz, w11 = fy * fz;
-                ref var n0 = ref Unsafe.Add(ref nodes, b);
-                Add(ref n0, value, gx * w00); Add(ref Unsafe.Add(ref n0, 1), value, fx * w00);
-                ref var n1 = ref Unsafe.Add(ref n0, sy);
-                Add(ref n1, value, gx * w10); Add(ref Unsafe.Add(ref n1, 1), value, fx * w10);
-                ref var n2 = ref Unsafe.Add(ref n0, sz);
-                Add(ref n2, value, gx * w01); Add(ref Unsafe.Add(ref n2, 1), value, fx * w01);
-                ref var n3 = ref Unsafe.Add(ref n2, sy);
-                Add(ref n3, value, gx * w11); Add(ref Unsafe.Add(ref n3, 1), value, fx * w11);
+                for (; i < e; i++) SplatOne(ref nodes, i, weight, sy, sz);
             }
         }
+    }
+
+    private void SplatOne(ref Vector128<float> nodes, int i, float weight, int sy, int sz)
+    {
+        var w = _w;
+        var g = _grid;
+        float px = w.PosX[i], py = w.PosY[i], pz = w.PosZ[i];
+        float vx = w.VelX[i], vy = w.VelY[i], vz = w.VelZ[i];
+        if (w.InvMass[i] == 0f)
+        {
+            var v = VolumeSystem.ParticleVelocity(w, i, _ctx);
+            vx = v.X; vy = v.Y; vz = v.Z;
+        }
+        if (!float.IsFinite(px + py + pz + vx + vy + vz)) return;
+        int b = Cell(px, py, pz, g.Origin, g.InvCell, g.Nx - 1.001f, g.Ny - 1.001f, g.Nz - 1.001f, sy, sz, out float fx, out float fy, out float fz);
+        var value = Vector128.Create(weight, weight * vx, weight * vy, weight * vz);
+        float gx = 1f - fx, gy = 1f - fy, gz = 1f - fz;
+        float w00 = gy * gz, w10 = fy * gz, w01 = gy * fz, w11 = fy * fz;
+        ref var n0 = ref Unsafe.Add(ref nodes, b);
+        Add(ref n0, value, gx * w00); Add(ref Unsafe.Add(ref n0, 1), value, fx * w00);
+        ref var n1 = ref Unsafe.Add(ref n0, sy);
+        Add(ref n1, value, gx * w10); Add(ref Unsafe.Add(ref n1, 1), value, fx * w10);
+        ref var n2 = ref Unsafe.Add(ref n0, sz);
+        Add(ref n2, value, gx * w01); Add(ref Unsafe.Add(ref n2, 1), value, fx * w01);
+        ref var n3 = ref Unsafe.Add(ref n2, sy);
+        Add(ref n3, value, gx * w11); Add(ref Unsafe.Add(ref n3, 1), value, fx * w11);
+    }
+
+    /// <summary>
+    /// Starts fetching the lines of strand s's positions, velocities and masses: the sample strands lie a few strands
+    /// apart, a stride the hardware's prefetchers do not follow across seven arrays, so every strand waited on memory.
+    /// With <paramref name="roots"/>, the rest position of its root as well (a pinned root's velocity comes from it).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static void FetchAhead(HairWorld w, int s, bool roots)
+    {
+        if ((uint)s >= (uint)w.StrandCount) return;
+        int a = w.StrandFirst[s], b = a + w.StrandParticleCount[s] - 1;
+        Prefetcher.Particle(w.PosX, a, b); Prefetcher.Particle(w.PosY, a, b); Prefetcher.Particle(w.PosZ, a, b);
+        Prefetcher.Particle(w.VelX, a, b); Prefetcher.Particle(w.VelY, a, b); Prefetcher.Particle(w.VelZ, a, b);
+        Prefetcher.Particle(w.InvMass, a, b);
+        if (!roots) return;
+        Prefetcher.First(w.RestX, a); Prefetcher.First(w.RestY, a); Prefetcher.First(w.RestZ, a);
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -293,16 +381,21 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     {
         var w = _w;
         var (sheetBegin, sheetEnd) = Sheets(job, _sheetJobs);
+        var lanes = new CellLanes(_grid);
         for (int q = sheetBegin; q < sheetEnd; q++)
         {
             int first = w.SheetFirstStrand[q], count = w.SheetStrandCount[q];
-            for (int j = 0; j < count; j++)
-                if (VolumeSampling.IsSample(j, count, _every)) SampleStrand(first + j);
+            for (int j = 0; j < count; j = VolumeSampling.Next(j, count, _every)) SampleStrand(first + j, in lanes);
             if (_inert) continue;
-            for (int j = 0; j < count; j++)
+            // Every strand between two samples a < b takes its share of both (VolumeSampling.Bracket, without a division
+            // per strand); a sample takes its own change.
+            for (int a = 0, b; a < count; a = b)
             {
-                var (a, b, t) = VolumeSampling.Bracket(j, count, _every);
-                Apply(first + j, first + a, first + b, (float)t);
+                b = VolumeSampling.Next(a, count, _every);
+                Apply(first + a, first + a, first + a, 0f);
+                if (b == count) break;
+                for (int j = a + 1; j < b; j++) Apply(first + j, first + a, first + b, (float)((double)(j - a) / (b - a)));
+                if (b == count - 1 && b % _every != 0) { Apply(first + b, first + a, first + b, 1f); break; }
             }
         }
     }
@@ -313,7 +406,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         var w = _w;
         float[] velX = w.VelX, velY = w.VelY, velZ = w.VelZ, invMass = w.InvMass;
         int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
-        int firstA = w.StrandFirst[a], lastA = w.StrandParticleCount[a] - 1, firstB = w.StrandFirst[b], lastB = w.StrandParticleCount[b] - 1;
+        int firstA = _sampleAt[a], lastA = w.StrandParticleCount[a] - 1, firstB = _sampleAt[b], lastB = w.StrandParticleCount[b] - 1;
         int whole = Math.Min(n, Math.Min(lastA, lastB) + 1);
         float ta = 1f - t;
         int k = 0;
@@ -350,26 +443,67 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static Vector256<float> Load(float[] a, int i) => Vector256.LoadUnsafe(ref a[0], (nuint)i);
 
-    /// <summary>D and S (see <see cref="_change"/>) at every particle of sample strand s, into the per-particle buffers.</summary>
-    private void SampleStrand(int s)
+    /// <summary>D and S (see <see cref="_change"/>) at every particle of sample strand s, into the packed buffers (eight at a time, then one by one: the same bits).</summary>
+    [SkipLocalsInit]
+    private unsafe void SampleStrand(int s, in CellLanes lanes)
     {
         var w = _w;
         var g = _grid;
-        var origin = g.Origin; float inv = g.InvCell;
-        float hx = g.Nx - 1.001f, hy = g.Ny - 1.001f, hz = g.Nz - 1.001f;
         int sy = g.Nx, sz = g.Nx * g.Ny;
         ref var change = ref _change[0];
         float[] posX = w.PosX, posY = w.PosY, posZ = w.PosZ, velX = w.VelX, velY = w.VelY, velZ = w.VelZ, invMass = w.InvMass;
         float[] pushX = _pushX, pushY = _pushY, pushZ = _pushZ, share = _share;
-        for (int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s]; i < e; i++)
+        int* cell = stackalloc int[CellLanes.Lanes];
+        int i = w.StrandFirst[s], e = i + w.StrandParticleCount[s];
+        // Particle i's values go to packed entry i + o.
+        int o = _sampleAt[s] - i, end = e + o;
+        if ((uint)e > (uint)posX.Length || (uint)e > (uint)velX.Length || (uint)e > (uint)invMass.Length || (uint)e > (uint)posY.Length
+            || (uint)e > (uint)posZ.Length || (uint)e > (uint)velY.Length || (uint)e > (uint)velZ.Length || (uint)end > (uint)share.Length
+            || (uint)end > (uint)pushX.Length || (uint)end > (uint)pushY.Length || (uint)end > (uint)pushZ.Length || i < 0 || i + o < 0)
+            throw new InvalidOperationException("Strand outside the particle arrays.");
+        FetchAhead(w, s + 2 * _every, roots: false);
+        // Eight particles at a time where AVX is there: their cells and weights side by side, and each corner's nodes
+        // turned into eight-lane channels (the same sums in the same order as one particle at a time, so the same bits).
+        for (; Lanes && i + CellLanes.Lanes <= e; i += CellLanes.Lanes)
+        {
+            var px = Load(posX, i); var py = Load(posY, i); var pz = Load(posZ, i);
+            var dead = Vector256.Equals(Load(invMass, i), Vector256<float>.Zero)
+                | CellLanes.NonFinite(px + py + pz + Load(velX, i) + Load(velY, i) + Load(velZ, i));
+            lanes.Cells(px, py, pz, cell, out var fx, out var fy, out var fz);
+            var one = Vector256<float>.One;
+            var gx = one - fx; var gy = one - fy; var gz = one - fz;
+            var w00 = gy * gz; var w10 = fy * gz; var w01 = gy * fz; var w11 = fy * fz;
+            CellLanes.Corner(ref change, cell, 0, out var x0, out var y0, out var z0, out var s0);
+            CellLanes.Corner(ref change, cell, 1, out var x1, out var y1, out var z1, out var s1);
+            var c0 = gx * w00; var c1 = fx * w00;
+            var ax = x0 * c0 + x1 * c1; var ay = y0 * c0 + y1 * c1; var az = z0 * c0 + z1 * c1; var aS = s0 * c0 + s1 * c1;
+            CellLanes.Corner(ref change, cell, sy, out x0, out y0, out z0, out s0);
+            CellLanes.Corner(ref change, cell, sy + 1, out x1, out y1, out z1, out s1);
+            c0 = gx * w10; c1 = fx * w10;
+            ax += x0 * c0 + x1 * c1; ay += y0 * c0 + y1 * c1; az += z0 * c0 + z1 * c1; aS += s0 * c0 + s1 * c1;
+            CellLanes.Corner(ref change, cell, sz, out x0, out y0, out z0, out s0);
+            CellLanes.Corner(ref change, cell, sz + 1, out x1, out y1, out z1, out s1);
+            c0 = gx * w01; c1 = fx * w01;
+            var bx = x0 * c0 + x1 * c1; var by = y0 * c0 + y1 * c1; var bz = z0 * c0 + z1 * c1; var bS = s0 * c0 + s1 * c1;
+            CellLanes.Corner(ref change, cell, sz + sy, out x0, out y0, out z0, out s0);
+            CellLanes.Corner(ref change, cell, sz + sy + 1, out x1, out y1, out z1, out s1);
+            c0 = gx * w11; c1 = fx * w11;
+            bx += x0 * c0 + x1 * c1; by += y0 * c0 + y1 * c1; bz += z0 * c0 + z1 * c1; bS += s0 * c0 + s1 * c1;
+            Vector256.AndNot(ax + bx, dead).StoreUnsafe(ref pushX[0], (nuint)(i + o));
+            Vector256.AndNot(ay + by, dead).StoreUnsafe(ref pushY[0], (nuint)(i + o));
+            Vector256.AndNot(az + bz, dead).StoreUnsafe(ref pushZ[0], (nuint)(i + o));
+            Vector256.AndNot(aS + bS, dead).StoreUnsafe(ref share[0], (nuint)(i + o));
+        }
+        float hx = g.Nx - 1.001f, hy = g.Ny - 1.001f, hz = g.Nz - 1.001f;
+        for (; i < e; i++)
         {
             float px = posX[i], py = posY[i], pz = posZ[i];
             if (invMass[i] == 0f || !float.IsFinite(px + py + pz + velX[i] + velY[i] + velZ[i]))
             {
-                pushX[i] = pushY[i] = pushZ[i] = share[i] = 0f;
+                pushX[i + o] = pushY[i + o] = pushZ[i + o] = share[i + o] = 0f;
                 continue;
             }
-            int b = Cell(px, py, pz, origin, inv, hx, hy, hz, sy, sz, out float fx, out float fy, out float fz);
+            int b = Cell(px, py, pz, g.Origin, g.InvCell, hx, hy, hz, sy, sz, out float fx, out float fy, out float fz);
             float gx = 1f - fx, gy = 1f - fy, gz = 1f - fz;
             float w00 = gy * gz, w10 = fy * gz, w01 = gy * fz, w11 = fy * fz;
             ref var n0 = ref Unsafe.Add(ref change, b);
@@ -380,7 +514,81 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
                     + (n1 * (gx * w10) + Unsafe.Add(ref n1, 1) * (fx * w10))
                     + ((n2 * (gx * w01) + Unsafe.Add(ref n2, 1) * (fx * w01))
                     + (n3 * (gx * w11) + Unsafe.Add(ref n3, 1) * (fx * w11)));
-            pushX[i] = acc.GetElement(0); pushY[i] = acc.GetElement(1); pushZ[i] = acc.GetElement(2); share[i] = acc.GetElement(3);
+            pushX[i + o] = acc.GetElement(0); pushY[i + o] = acc.GetElement(1); pushZ[i + o] = acc.GetElement(2); share[i + o] = acc.GetElement(3);
         }
+    }
+
+    /// <summary>
+    /// Eight particles' grid cells and trilinear corner weights, side by side, with <see cref="Cell"/>'s operations lane by
+    /// lane (so the same bits): the scalar version spent most of its time on the clamps, conversions and weights.
+    /// </summary>
+    private readonly struct CellLanes(VolumeGrid g)
+    {
+        public const int Lanes = 8;
+        private readonly Vector256<float> _ox = Vector256.Create(g.Origin.X), _oy = Vector256.Create(g.Origin.Y), _oz = Vector256.Create(g.Origin.Z);
+        private readonly Vector256<float> _inv = Vector256.Create(g.InvCell);
+        private readonly Vector256<float> _hx = Vector256.Create(g.Nx - 1.001f), _hy = Vector256.Create(g.Ny - 1.001f), _hz = Vector256.Create(g.Nz - 1.001f);
+        private readonly Vector256<int> _sy = Vector256.Create(g.Nx), _sz = Vector256.Create(g.Nx * g.Ny);
+
+        /// <summary>Lanes whose sum is finite, as bits.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public static uint Finite(Vector256<float> sum) => ~NonFinite(sum).ExtractMostSignificantBits() & 0xFFu;
+
+        /// <summary>Lanes whose sum is not finite, as a mask.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public static Vector256<float> NonFinite(Vector256<float> sum)
+        {
+            var exponent = Vector256.Create(0x7F800000);
+            return Vector256.Equals(sum.AsInt32() & exponent, exponent).AsSingle();
+        }
+
+        /// <summary>Each lane's first node into <paramref name="cell"/>, and its place in the cell.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public unsafe void Cells(Vector256<float> px, Vector256<float> py, Vector256<float> pz, int* cell,
+            out Vector256<float> fx, out Vector256<float> fy, out Vector256<float> fz)
+        {
+            var ux = Clamp((px - _ox) * _inv, _hx); var uy = Clamp((py - _oy) * _inv, _hy); var uz = Clamp((pz - _oz) * _inv, _hz);
+            // The clamped values lie in [0, N − 1): truncation is C#'s (int) conversion there.
+            var ix = Vector256.ConvertToInt32(ux); var iy = Vector256.ConvertToInt32(uy); var iz = Vector256.ConvertToInt32(uz);
+            fx = ux - Vector256.ConvertToSingle(ix); fy = uy - Vector256.ConvertToSingle(iy); fz = uz - Vector256.ConvertToSingle(iz);
+            (ix + _sy * iy + _sz * iz).Store(cell);
+        }
+
+        /// <summary>Each lane's first node into <paramref name="cell"/>, corner c's weight (c = x + 2y + 4z) into corner[8c + lane].</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public unsafe void Cells(Vector256<float> px, Vector256<float> py, Vector256<float> pz, int* cell, float* corner)
+        {
+            Cells(px, py, pz, cell, out var fx, out var fy, out var fz);
+            var one = Vector256<float>.One;
+            var gx = one - fx; var gy = one - fy; var gz = one - fz;
+            var w00 = gy * gz; var w10 = fy * gz; var w01 = gy * fz; var w11 = fy * fz;
+            (gx * w00).Store(corner); (fx * w00).Store(corner + 8);
+            (gx * w10).Store(corner + 16); (fx * w10).Store(corner + 24);
+            (gx * w01).Store(corner + 32); (fx * w01).Store(corner + 40);
+            (gx * w11).Store(corner + 48); (fx * w11).Store(corner + 56);
+        }
+
+        /// <summary>
+        /// The four floats of node cell[l] + o of every lane l, as eight-lane vectors: lanes j and j + 4 share one 256-bit
+        /// value, and a 4×4 transpose within each half puts lanes 0–3 and 4–7 in order.
+        /// </summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public static unsafe void Corner(ref Vector128<float> nodes, int* cell, int o,
+            out Vector256<float> x, out Vector256<float> y, out Vector256<float> z, out Vector256<float> w)
+        {
+            var p0 = Vector256.Create(Unsafe.Add(ref nodes, cell[0] + o), Unsafe.Add(ref nodes, cell[4] + o));
+            var p1 = Vector256.Create(Unsafe.Add(ref nodes, cell[1] + o), Unsafe.Add(ref nodes, cell[5] + o));
+            var p2 = Vector256.Create(Unsafe.Add(ref nodes, cell[2] + o), Unsafe.Add(ref nodes, cell[6] + o));
+            var p3 = Vector256.Create(Unsafe.Add(ref nodes, cell[3] + o), Unsafe.Add(ref nodes, cell[7] + o));
+            var t0 = Avx.UnpackLow(p0, p1); var t1 = Avx.UnpackHigh(p0, p1);
+            var t2 = Avx.UnpackLow(p2, p3); var t3 = Avx.UnpackHigh(p2, p3);
+            x = Avx.Shuffle(t0, t2, 0x44); y = Avx.Shuffle(t0, t2, 0xEE);
+            z = Avx.Shuffle(t1, t3, 0x44); w = Avx.Shuffle(t1, t3, 0xEE);
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private static Vector256<float> Clamp(Vector256<float> u, Vector256<float> hi) =>
+            Vector256.ConditionalSelect(Vector256.GreaterThanOrEqual(u, Vector256<float>.Zero),
+                Vector256.ConditionalSelect(Vector256.LessThanOrEqual(u, hi), u, hi), Vector256<float>.Zero);
     }
 }

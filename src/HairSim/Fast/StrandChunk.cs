@@ -693,6 +693,14 @@ internal unsafe struct Prefetcher
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void First<T>(T[] a, int s0) where T : unmanaged => Line(a, s0);
 
+    /// <summary>The lines holding entries a and b of a particle array (a strand's first and last particle: a strand of up to 17 fits in the two).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void Particle(float[] p, int a, int b)
+    {
+        Line(p, a);
+        Line(p, b);
+    }
+
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Line<T>(T[] a, int i) where T : unmanaged
     {

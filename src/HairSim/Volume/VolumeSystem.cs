@@ -204,6 +204,9 @@ public static class VolumeSampling
     /// <summary>Strand j of a sheet of n is a sample: every <paramref name="every"/>-th, and the last.</summary>
     public static bool IsSample(int j, int n, int every) => j % every == 0 || j == n - 1;
 
+    /// <summary>The sample after sample j of a sheet of n (n after the last): stepping with it visits exactly the strands <see cref="IsSample"/> names, without a division per strand.</summary>
+    public static int Next(int j, int n, int every) => j >= n - 1 ? n : Math.Min(j + every, n - 1);
+
     /// <summary>How many strands each sample of a sheet of n stands for (n over the number of samples).</summary>
     public static double Weight(int n, int every)
     {
