@@ -92,7 +92,9 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
         _ctx = ctx;
 
         _every = settings.SampleEvery;
-        _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount);
+        // Four sample-and-spread jobs per thread, so a thread that starts late (or is held up by another process) leaves
+        // its share to the others (each sheet is computed alone: the same bits whatever the job count).
+        _sheetJobs = Math.Min(Math.Min(MaxJobs, w.SheetCount), dispatcher.ThreadCount == 1 ? 1 : 4 * dispatcher.ThreadCount);
         // The bounds of a head of hair's sample strands take less than a fork costs: on this thread unless the groom is huge.
         _boundsJobs = w.ParticleCount < InlineBoundsParticles ? 1 : _sheetJobs;
         if (_boundsJobs == 1) BoundsJob(0); else dispatcher.Run(_boundsJobs, _boundsJob);
