@@ -71,10 +71,10 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     public VolumeGrid Grid => _grid;
 
     /// <summary>
-    /// Splat and sample eight particles at a time (where AVX is there); false takes them one by one, with the same bits
+    /// Splat and sample eight particles at a time (where AVX2 is there); false takes them one by one, with the same bits
     /// (for tests).
     /// </summary>
-    internal bool Lanes { get; set; } = Avx.IsSupported;
+    internal bool Lanes { get; set; } = Avx2.IsSupported;
 
     public void Run(HairScene scene, FrameContext ctx, int substep, int begin, int end)
     {
@@ -464,7 +464,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
             || (uint)end > (uint)pushX.Length || (uint)end > (uint)pushY.Length || (uint)end > (uint)pushZ.Length || i < 0 || i + o < 0)
             throw new InvalidOperationException("Strand outside the particle arrays.");
         FetchAhead(w, s + 2 * _every, roots: false);
-        // Eight particles at a time where AVX is there: their cells and weights side by side, and each corner's nodes
+        // Eight particles at a time where AVX2 is there: their cells and weights side by side, and each corner's nodes
         // turned into eight-lane channels (the same sums in the same order as one particle at a time, so the same bits).
         for (; Lanes && i + CellLanes.Lanes <= e; i += CellLanes.Lanes)
         {

@@ -152,7 +152,7 @@ public class VolumeTests
     [InlineData(5, 3)]   // strands shorter than a block: one by one only
     public void The_fast_path_s_eight_lane_splat_and_sample_give_the_one_by_one_bits(int particles, int every)
     {
-        if (!System.Runtime.Intrinsics.X86.Avx.IsSupported) return; // one by one is all there is
+        if (!System.Runtime.Intrinsics.X86.Avx2.IsSupported) return; // one by one is all there is
         var results = new List<float[]>();
         foreach (bool lanes in new[] { true, false })
         {
