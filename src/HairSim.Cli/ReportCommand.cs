@@ -143,15 +143,16 @@ public static class ReportCommand
     private static void VolumeSection(StringBuilder md, string dir)
     {
         md.Append("\n## Hair volume\n\n");
-        md.Append("The reference scene under three bend models, without and with hair volume (`VolumeSettings` defaults, docs/volume.md): the outer layer's mean height above the crown (`HairVolume.OuterLayerThickness` with directions more than 0.5 rad above the head's equator, binned 24 × 8; the farthest particle above the head ellipsoid in each bin, averaged). Without volume strands do not push on one another, so what keeps volume is only each strand's own shape: the default rest-shape model holds the groom's lift; the source's triples and limp hair sink towards the scalp.\n\n");
+        md.Append("The reference scene under three bend models, without and with hair volume (`VolumeSettings` defaults, docs/volume.md): the outer layer's mean height above the crown (`HairVolume.OuterLayerThickness` with directions more than 0.5 rad above the head's equator, binned 24 × 8; the farthest particle above the head ellipsoid in each bin, averaged). Without volume strands do not push on one another, so what keeps volume is only each strand's own shape: the default rest-shape model holds the groom's lift; the source's triples and limp hair sink towards the scalp. Volume pushes where hair packs denser than its target, by default the median density the rest pose's particles see: the outer layer at rest is sparser than that median, so it may sink until it reaches it; a target of half the median (`Density = 0.5`) pushes back before that.\n\n");
         md.Append("| bend model | volume | as grown (mm) | after 2 s still | after a 3 s head shake and 1 s still |\n|---|---|---:|---:|---:|\n");
         using var threads = ThreadDispatchers.CreateDefault();
+        // Off, the defaults, and a target density of half the rest median (what keeps a groom that sinks from sinking).
         foreach (var bend in new[] { BendModel.RestShape, BendModel.SourceTriples, BendModel.Limp })
-            foreach (bool volume in new[] { false, true })
+            foreach (var (label, settings) in new (string, VolumeSettings?)[] { ("off", null), ("on", new VolumeSettings()), ("on, Density 0.5", new VolumeSettings { Density = 0.5f }) })
             {
                 var g = GroomSettings.Reference();
                 var scene = GroomBuilder.BuildScene(g, new SimulationSettings { Bend = bend });
-                if (volume) scene.SetComponent(new VolumeSettings());
+                if (settings != null) scene.SetComponent(settings);
                 var sim = new HairSimulation(scene, dispatcher: threads);
                 double Thickness() => HairVolume.OuterLayerThickness(scene.World, g.HeadCenter, g.HeadRadii, 0.5f);
                 double grown = Thickness();
@@ -160,7 +161,7 @@ public static class ReportCommand
                 for (int f = 1; f <= 180; f++) sim.Step(1f / 60f, HeadMotion.Shake(f / 60f));
                 for (int f = 0; f < 60; f++) sim.Step(1f / 60f, RigidTransform.Identity);
                 double shaken = Thickness();
-                md.Append(F($"| {bend} | {(volume ? "on" : "off")} | {grown * 1000:F1} | {settled * 1000:F1} ({settled / grown * 100:F0} %) | {shaken * 1000:F1} ({shaken / grown * 100:F0} %) |\n"));
+                md.Append(F($"| {bend} | {label} | {grown * 1000:F1} | {settled * 1000:F1} ({settled / grown * 100:F0} %) | {shaken * 1000:F1} ({shaken / grown * 100:F0} %) |\n"));
             }
         md.Append("\nTwo crossing sheets (`CrossingSheets`: 20 + 20 limp strands of 16 particles; sheet B falls from 12 % of the strand length onto sheet A lying on a floor, 3 natural seconds, Froude-scaled): wherever a strand of B crosses a strand of A seen from above (about 400 places as dropped), whether B ended at or below A (passed through A's layer), whether it ended in A's layer (at or below A or less than 1 % of the length above it: strands have no thickness here, so where a B strand lies in A's plane the strict count flips on float-level differences), and B's mean height above A as a share of the strand length. Volume with the defaults (a pass every `MaxStep` = 1/8 natural time, shorter passes while the push is stiff, down to 1/32) and with `MaxStep` = 1/32 (every pass 1/32 natural time: 5 ms for 25 cm hair). Passes per frame: the parts the pipeline stepped, on average over the run. Fast path.\n\n");
         md.Append("| strand length | frame rate | no volume: B at or below A | no volume: B in A's layer | defaults: B at or below A | defaults: B in A's layer | defaults: mean gap | defaults: passes per frame | MaxStep 1/32: B at or below A | MaxStep 1/32: B in A's layer | MaxStep 1/32: mean gap | MaxStep 1/32: passes per frame |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -172,18 +173,29 @@ public static class ReportCommand
                 var fine = CrossingSheets.Run(new VolumeSettings { MaxStep = 1f / 32 }, SolverPath.Fast, hz, scale: scale, dispatcher: threads);
                 md.Append(F($"| {0.25 * scale * 100:0.##} cm | {hz} Hz | {off.Sunk} of {off.Crossings} | {off.InLayer} | {on.Sunk} of {on.Crossings} | {on.InLayer} | {Gap(on)} | {on.PartsPerFrame:F2} | {fine.Sunk} of {fine.Crossings} | {fine.InLayer} | {Gap(fine)} | {fine.PartsPerFrame:F2} |\n"));
             }
+        // The price of Density 0.5 (the crown table above): packed hair pushes from a lower density, so a landing sheet
+        // can be blown sideways off the other (fewer crossings left) instead of resting on it.
+        md.Append("\nThe same crossing sheets with `Density = 0.5` (the setting that keeps a sinking groom's crown above):\n\n");
+        md.Append("| strand length | frame rate | B at or below A | B in A's layer | crossings left of about 400 | passes per frame |\n|---|---:|---:|---:|---:|---:|\n");
+        foreach (float scale in new[] { 0.04f, 1f, 40f })
+            foreach (int hz in new[] { 30, 60, 240 })
+            {
+                var half = CrossingSheets.Run(new VolumeSettings { Density = 0.5f }, SolverPath.Fast, hz, scale: scale, dispatcher: threads);
+                md.Append(F($"| {0.25 * scale * 100:0.##} cm | {hz} Hz | {half.Sunk} | {half.InLayer} | {half.Crossings} | {half.PartsPerFrame:F2} |\n"));
+            }
         var reference = CrossingSheets.Run(new VolumeSettings(), SolverPath.Reference, 60);
         md.Append(F($"\nReference path (double precision), defaults, 25 cm at 60 Hz: B at or below A at {reference.Sunk} of {reference.Crossings}, in A's layer at {reference.InLayer}, mean gap {Gap(reference)}, {reference.PartsPerFrame:F2} passes per frame.\n"));
         ContactSection(md, threads, dir);
-        // What the defaults cost in passes on the reference groom: the head shake that leave-out times.
+        // What the defaults (and Density 0.5) cost in passes on the reference groom: the head shake that leave-out times.
+        foreach (var (label, settings) in new[] { ("the defaults", new VolumeSettings()), ("`Density = 0.5`", new VolumeSettings { Density = 0.5f }) })
         {
             var scene = GroomBuilder.BuildScene(GroomSettings.Reference(), new SimulationSettings());
-            scene.SetComponent(new VolumeSettings());
+            scene.SetComponent(settings);
             var sim = new HairSimulation(scene, dispatcher: threads);
             long parts = 0; int most = 0;
             const int frames = 300;
             for (int f = 1; f <= frames; f++) { sim.Step(1f / 60, HeadMotion.Shake(f / 60f)); parts += sim.Pipeline.LastFrameParts; most = Math.Max(most, sim.Pipeline.LastFrameParts); }
-            md.Append(F($"\nThe reference groom with the defaults under the head shake `leave-out` times (5 s at 60 Hz): {(double)parts / frames:F2} volume passes per frame on average, at most {most}.\n"));
+            md.Append(F($"\nThe reference groom with {label} under the head shake `leave-out` times (5 s at 60 Hz): {(double)parts / frames:F2} volume passes per frame on average, at most {most}.\n"));
         }
     }
 
@@ -193,7 +205,9 @@ public static class ReportCommand
     /// </summary>
     private static void ContactSection(StringBuilder md, IThreadDispatcher threads, string dir)
     {
-        // Pictures: 25 cm sheets at 60 Hz after 3 natural seconds, seen along A's strands.
+        // Pictures: 25 cm sheets at 60 Hz after 3 natural seconds, seen along A's strands (into img/ beside the report,
+        // which `--section volume` may write into a folder that has none yet).
+        Directory.CreateDirectory(Path.Combine(dir, "img"));
         md.Append("\n| 25 cm, 60 Hz, nothing between the sheets | the same with strand contacts |\n| --- | --- |\n| ![B sinks into A](img/crossing-sheets-off.svg) | ![B rests on A](img/crossing-sheets-contacts.svg) |\n\nSeen along A's strands (A end-on, dark; B across them, blue), heights × 8: without contacts B lies in A's layer, on the floor between A's strands and under them; with contacts it lies on top.\n");
         foreach (bool on in new[] { false, true })
         {

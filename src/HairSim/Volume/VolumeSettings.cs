@@ -29,8 +29,10 @@ public sealed class VolumeSettings
 
     /// <summary>
     /// The density hair may reach before it pushes back, as a multiple of the groom at rest (the median density the
-    /// rest pose's particles see). 1 = hair may not pack denser than it typically is at rest (the default); 0.5 = hair
-    /// puffs up to about twice its rest volume where it can; 2 = it may compress to half before pushing.
+    /// rest pose's particles see). 1 = hair may not pack denser than it typically is at rest (the default: the sparser
+    /// outer layer may still sink until it is that dense); 0.5 = hair without its own lift (limp, or the source's
+    /// triples) keeps its grown thickness on the crown, at about twice the volume passes; 2 = it may compress to half
+    /// before pushing.
     /// </summary>
     public float Density { get; set; } = 1f;
 

@@ -178,6 +178,26 @@ public class VolumeTests
     }
 
     [Fact]
+    public void Limp_hair_sinks_on_the_crown_and_half_the_rest_density_keeps_it_within_a_fifth()
+    {
+        static double Kept(VolumeSettings? volume)
+        {
+            var g = new GroomSettings { SheetCount = 120, StrandsPerSheet = 8 };
+            var scene = GroomBuilder.BuildScene(g, new SimulationSettings { Bend = BendModel.Limp });
+            if (volume != null) scene.SetComponent(volume);
+            double grown = HairVolume.OuterLayerThickness(scene.World, g.HeadCenter, g.HeadRadii, 0.5f);
+            var sim = new HairSimulation(scene);
+            for (int f = 0; f < 60; f++) sim.Step(1f / 60);
+            return HairVolume.OuterLayerThickness(scene.World, g.HeadCenter, g.HeadRadii, 0.5f) / grown;
+        }
+        // Nothing holds limp hair up but other hair: without volume, and with the default target (the median rest
+        // density, which the sparser outer layer reaches by sinking), the crown's outer layer sinks to about half.
+        Assert.InRange(Kept(null), 0.0, 0.7);
+        Assert.InRange(Kept(new VolumeSettings()), 0.0, 0.7);
+        Assert.InRange(Kept(new VolumeSettings { Density = 0.5f }), 0.8, 1.2);
+    }
+
+    [Fact]
     public void Bad_volume_settings_are_refused_before_anything_moves()
     {
         foreach (var path in new[] { SolverPath.Reference, SolverPath.Fast })
