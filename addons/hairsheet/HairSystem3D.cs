@@ -55,6 +55,7 @@ public partial class HairSystem3D : Node3D
     private int _stepsPerSecond = 60;
     private bool _hairVolume = false;
     private float _volumeStiffness = 8f;
+    private float _volumeDensity = 1f;
     private float _volumeFriction = 50f;
     private float _volumeMaxStep = 0.125f;
     private bool _strandContacts = false;
@@ -206,6 +207,8 @@ public partial class HairSystem3D : Node3D
     [Export(PropertyHint.Range, "0,100,0.1")] public float VolumeStiffness { get => _volumeStiffness; set { _volumeStiffness = value; _settings.VolumeStiffness = value; Invalidate(); } }
     /// <summary>Friction between strands per natural time: 50 = strands that touch move together.</summary>
     [Export(PropertyHint.Range, "0,1000,0.1,exp")] public float VolumeFriction { get => _volumeFriction; set { _volumeFriction = value; _settings.VolumeFriction = value; Invalidate(); } }
+    /// <summary>Density hair may pack to before it pushes, as a multiple of its median rest density: 1 = the default; 0.5 = limp hair keeps its grown thickness on the crown (about twice the passes).</summary>
+    [Export(PropertyHint.Range, "0.05,4,0.01,exp")] public float VolumeDensity { get => _volumeDensity; set { _volumeDensity = value; _settings.VolumeDensity = value; Invalidate(); } }
     /// <summary>Longest time between volume passes in natural times: 0.125 = once per 60 Hz frame for 25 cm hair; 0.03 keeps layers apart (about 3× the cost).</summary>
     [Export(PropertyHint.Range, "0.01,1,0.005,exp")] public float VolumeMaxStep { get => _volumeMaxStep; set { _volumeMaxStep = value; _settings.VolumeMaxStep = value; Invalidate(); } }
 

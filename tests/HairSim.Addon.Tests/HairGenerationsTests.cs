@@ -138,6 +138,7 @@ public class HairGenerationsTests
             ("RenderDensity", s => s.RenderDensity = 0), ("RootWidth", s => s.RootWidth *= 2), ("TipWidth", s => s.TipWidth = 0),
             ("StepsPerSecond", s => s.StepsPerSecond = 120), ("HeadRadii", s => s.HeadRadii *= 1.1f), ("Seed", s => s.Seed++),
             ("HairVolume", s => s.HairVolume = true), ("VolumeStiffness", s => s.VolumeStiffness = 9f), ("VolumeFriction", s => s.VolumeFriction = 4f),
+            ("VolumeDensity", s => s.VolumeDensity = 0.5f),
             ("VolumeMaxStep", s => s.VolumeMaxStep = 0.03f), ("StrandContacts", s => s.StrandContacts = true),
             ("ContactThickness", s => s.ContactThickness = 0.5f), ("ContactFriction", s => s.ContactFriction = 0.6f),
         };

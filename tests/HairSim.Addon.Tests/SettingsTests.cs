@@ -51,10 +51,12 @@ public class SettingsTests
         s.HairVolume = true;
         var v = s.ToVolume()!;
         var lib = new VolumeSettings();
-        Assert.Equal((lib.Stiffness, lib.Friction, lib.MaxStep), (v.Stiffness, v.Friction, v.MaxStep));
-        s.VolumeFriction = float.NaN; s.VolumeMaxStep = 0f; s.VolumeStiffness = -1f;
+        Assert.Equal((lib.Stiffness, lib.Friction, lib.Density, lib.MaxStep), (v.Stiffness, v.Friction, v.Density, v.MaxStep));
+        s.VolumeDensity = 0.5f;
+        Assert.Equal(0.5f, s.ToVolume()!.Density);
+        s.VolumeFriction = float.NaN; s.VolumeMaxStep = 0f; s.VolumeStiffness = -1f; s.VolumeDensity = 0f;
         var problems = s.Validate();
-        foreach (var name in new[] { "Volume Stiffness", "Volume Friction", "Volume Max Step" })
+        foreach (var name in new[] { "Volume Stiffness", "Volume Friction", "Volume Max Step", "Volume Density" })
             Assert.Contains(problems, p => p.StartsWith(name, StringComparison.Ordinal));
         Assert.Throws<HairSettingsException>(() => s.ToVolume());
     }

@@ -133,6 +133,8 @@ describe('HairSheet Studio in Chromium', { skip: skip ?? false }, () => {
     // Hair volume on the fast path (the reference path steps the full groom too slowly for a live check).
     await page.locator('#volumeFriction').fill('20');
     await until(async () => (await state()).settings.volumeFriction === 20, 'volume friction 20');
+    await page.locator('#volumeDensity').fill('0.5');
+    await until(async () => (await state()).settings.volumeDensity === 0.5, 'volume density 0.5');
     await page.check('#volume');
     await until(async () => (await state()).settings.volume === true, 'hair volume on');
     const before = (await state()).frame;

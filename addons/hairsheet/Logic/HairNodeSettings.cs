@@ -45,6 +45,8 @@ public sealed class HairNodeSettings
     public float VolumeStiffness { get; set; } = 8f;
     /// <summary>Friction between strands per natural time: 50 = strands that touch move together.</summary>
     public float VolumeFriction { get; set; } = 50f;
+    /// <summary>Density hair may pack to before it pushes, as a multiple of its median rest density: 1 = the default; 0.5 = limp hair keeps its grown thickness on the crown (about twice the passes).</summary>
+    public float VolumeDensity { get; set; } = 1f;
     /// <summary>Longest time between volume passes in natural times: 0.125 = one per 60 Hz frame for 25 cm hair; 0.03 keeps layers apart at about 3× the cost.</summary>
     public float VolumeMaxStep { get; set; } = 0.125f;
     /// <summary>Strand contacts (docs/volume.md): strands of different sheets never pass through each other. Off by default; for hair of a few layers, not a full head.</summary>
@@ -98,6 +100,7 @@ public sealed class HairNodeSettings
         if (!Finite(Gravity) || Gravity.Length() > 1000f) p.Add($"Gravity must be finite and at most 1000 m/s², got {Gravity}.");
         FloatRange(p, "Volume Stiffness", VolumeStiffness, 0f, 1000f);
         FloatRange(p, "Volume Friction", VolumeFriction, 0f, 1000f);
+        FloatRange(p, "Volume Density", VolumeDensity, 0.05f, 100f);
         FloatRange(p, "Volume Max Step", VolumeMaxStep, 0.01f, 100f);
         FloatRange(p, "Contact Thickness", ContactThickness, 0.01f, 10f);
         FloatRange(p, "Contact Friction", ContactFriction, 0f, 10f);
@@ -183,7 +186,7 @@ public sealed class HairNodeSettings
     {
         ThrowIfInvalid();
         if (!HairVolume) return null;
-        var v = new VolumeSettings { Stiffness = VolumeStiffness, Friction = VolumeFriction, MaxStep = VolumeMaxStep };
+        var v = new VolumeSettings { Stiffness = VolumeStiffness, Friction = VolumeFriction, Density = VolumeDensity, MaxStep = VolumeMaxStep };
         v.Validate();
         return v;
     }

@@ -82,10 +82,11 @@ public sealed class SettingsRequest
     public float? StaticFriction { get; set; }
     public float? KineticFriction { get; set; }
     public string? Path { get; set; }
-    /// <summary>Hair volume on or off (docs/volume.md); its stiffness and friction as VolumeSettings documents them.</summary>
+    /// <summary>Hair volume on or off (docs/volume.md); its stiffness, friction and target density as VolumeSettings documents them.</summary>
     public bool? Volume { get; set; }
     public float? VolumeStiffness { get; set; }
     public float? VolumeFriction { get; set; }
+    public float? VolumeDensity { get; set; }
 }
 
 /// <summary>A paint stroke on a head mesh's scalp: a rectangle, lasso or brush (as selections are drawn) that adds or erases.</summary>

@@ -202,6 +202,7 @@ public sealed class StudioSession : IDisposable
                     Sag = st.Sag, BendDamping = st.BendDamping, Damping = st.Damping, Gravity = -st.Gravity.Y / 9.81f, Substeps = st.Substeps,
                     StaticFriction = st.StaticFriction, KineticFriction = st.KineticFriction, Path = st.Path.ToString(),
                     Volume = _scene.HasComponent<VolumeSettings>(), VolumeStiffness = _volume.Stiffness, VolumeFriction = _volume.Friction,
+                    VolumeDensity = _volume.Density,
                 },
                 new HeadRequest { Position = Arr(_headPosition), Yaw = _yaw, Pitch = _pitch, Roll = _roll, Shake = _shake },
                 colliders.ToArray(),
@@ -406,6 +407,7 @@ public sealed class StudioSession : IDisposable
             var volume = _volume.Clone();
             if (r.VolumeStiffness is float vs) volume.Stiffness = vs;
             if (r.VolumeFriction is float vf) volume.Friction = vf;
+            if (r.VolumeDensity is float vd) volume.Density = vd;
             volume.Validate();
             next.CopyTo(_scene.Settings);
             _scene.SettingsChanged();

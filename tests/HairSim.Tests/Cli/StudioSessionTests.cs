@@ -209,6 +209,7 @@ public sealed class StudioSessionTests : IDisposable
             () => _session.ApplySettings(new SettingsRequest { Damping = -1 }),
             () => _session.ApplySettings(new SettingsRequest { Path = "Quantum" }),
             () => _session.ApplySettings(new SettingsRequest { Sag = 0.2f, Volume = true, VolumeFriction = float.NaN }), // none applied
+            () => _session.ApplySettings(new SettingsRequest { Volume = true, VolumeDensity = 0f }),
             () => _session.Load([]),
             () => _session.Load("HSTY but not really a hairstyle"u8),
             () => _session.Load(before.AsSpan(0, before.Length - 9)),
@@ -266,9 +267,9 @@ public sealed class StudioSessionTests : IDisposable
         Assert.Equal(0.05f, head.Position![0]);
 
         // Hair volume: on with its own stiffness and friction, kept through a new groom, off again.
-        _session.ApplySettings(new SettingsRequest { Volume = true, VolumeStiffness = 12f, VolumeFriction = 30f });
+        _session.ApplySettings(new SettingsRequest { Volume = true, VolumeStiffness = 12f, VolumeFriction = 30f, VolumeDensity = 0.5f });
         Assert.True(_session.State().Settings.Volume);
-        Assert.Equal((12f, 30f), (_session.State().Settings.VolumeStiffness, _session.State().Settings.VolumeFriction));
+        Assert.Equal((12f, 30f, 0.5f), (_session.State().Settings.VolumeStiffness, _session.State().Settings.VolumeFriction, _session.State().Settings.VolumeDensity));
         Settle(5);
         Assert.Equal(0, _session.State().Metrics.NonFinite);
 

@@ -222,7 +222,7 @@ class Studio {
     const sliders = {
       sag: { toValue: v => 10 ** (-3 + 3.3 * v / 100), toSlider: s => Math.round(100 * (Math.log10(Math.max(s, 1e-3)) + 3) / 3.3), fmt: v => v.toFixed(3) },
       bendDamping: {}, damping: {}, gravity: { fmt: v => `${v.toFixed(2)} g` }, substeps: {}, staticFriction: {}, kineticFriction: {},
-      volumeStiffness: {}, volumeFriction: {},
+      volumeStiffness: {}, volumeFriction: {}, volumeDensity: {},
     };
     this.sliders = sliders;
     for (const [name, s] of Object.entries(sliders)) {
