@@ -36,6 +36,9 @@ public sealed class BackgroundStepper : IDisposable
     /// <summary>Wall time the worker spent on the last finished step, in milliseconds.</summary>
     public double LastStepMilliseconds { get; private set; }
 
+    /// <summary>Bytes the worker thread allocated during the last finished step (0 once the scene runs; helper threads of a parallel dispatcher are not counted).</summary>
+    public long LastStepAllocatedBytes { get; private set; }
+
     /// <summary>Starts <paramref name="steps"/> steps of <paramref name="dt"/> toward <paramref name="head"/> on the worker.</summary>
     public void Start(float dt, int steps, RigidTransform head)
     {
@@ -65,6 +68,7 @@ public sealed class BackgroundStepper : IDisposable
             _go.Wait();
             if (_quit) return;
             _timer.Restart();
+            long allocated = GC.GetAllocatedBytesForCurrentThread();
             try
             {
                 for (int i = 0; i < _steps; i++) _simulation.Step(_dt, _head);
@@ -74,6 +78,7 @@ public sealed class BackgroundStepper : IDisposable
                 _error = e;
             }
             LastStepMilliseconds = _timer.Elapsed.TotalMilliseconds;
+            LastStepAllocatedBytes = GC.GetAllocatedBytesForCurrentThread() - allocated;
             _done.Release();
         }
     }
