@@ -450,7 +450,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             return inside;
         }
 
-        /// <summary>The field's value outside the grid (SignedDistanceField.Outside): the distance to the grid, at least the band.</summary>
+        /// <summary>The field's value outside the grid (SignedDistanceField.Outside): the band plus the distance to the grid.</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         private Vector256<float> Outside(Vector256<float> gx, Vector256<float> gy, Vector256<float> gz)
         {
@@ -460,7 +460,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             var dx = Avx.Max(Avx.Max(-gx, gx - _hx), zero);
             var dy = Avx.Max(Avx.Max(-gy, gy - _hy), zero);
             var dz = Avx.Max(Avx.Max(-gz, gz - _hz), zero);
-            return Avx.Max(_band, Vector256.Sqrt(dx * dx + dy * dy + dz * dz) * _cell);
+            return _band + Vector256.Sqrt(dx * dx + dy * dy + dz * dz) * _cell;
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -274,8 +274,9 @@ public sealed class SignedDistanceField
 
     /// <summary>
     /// Signed distance at p (metres; negative inside), trilinear between cells. Outside the grid (which holds the whole
-    /// surface) the distance to the grid, and at least the band: a lower bound of the distance to the surface, so hair
-    /// hanging far below a head is known to be far from it.
+    /// surface at least the band inside its boundary) the band plus the distance to the grid: a lower bound of the
+    /// distance to the surface (the way from p to the surface crosses the boundary, then the band), so hair hanging
+    /// below a head is known to be far from it as soon as it leaves the grid.
     /// </summary>
     public float Distance(Vector3 p) => DistanceAt(p.X, p.Y, p.Z);
 
@@ -283,7 +284,7 @@ public sealed class SignedDistanceField
     private float Outside(float gx, float gy, float gz)
     {
         float dx = MathF.Max(MathF.Max(-gx, gx - _hx), 0f), dy = MathF.Max(MathF.Max(-gy, gy - _hy), 0f), dz = MathF.Max(MathF.Max(-gz, gz - _hz), 0f);
-        return MathF.Max(_band, MathF.Sqrt(dx * dx + dy * dy + dz * dz) * CellSize);
+        return _band + MathF.Sqrt(dx * dx + dy * dy + dz * dz) * CellSize;
     }
 
     /// <summary>

@@ -34,7 +34,17 @@ public sealed class MeshTests
             Assert.True(Vector3.Dot(Vector3.Normalize(g), dir) > 0.98f, $"gradient {g} at {p}");
         }
         Assert.InRange(sdf.Distance(Vector3.Zero), -1.1f * r, -0.9f * r);   // deep inside: the chamfer continuation
-        Assert.True(sdf.Distance(new Vector3(0.5f, 0, 0)) > 0.3f); // outside the grid: at least the distance to it
+        // Outside the grid: the band plus the distance to the grid, a lower bound of the true distance, and exact along
+        // an axis (the grid ends 4 cells beyond the sphere: the pad, of which the band is 3).
+        float gridEnd = sdf.Origin.X + (sdf.Nx - 1) * cell;
+        foreach (float x in new[] { gridEnd + 0.001f, gridEnd + 0.05f, 0.5f })
+        {
+            float d = sdf.Distance(new Vector3(x, 0, 0));
+            Assert.Equal(sdf.Band + (x - gridEnd), d, 1e-5f);
+            Assert.True(d <= x - r, $"{d} above the true distance {x - r} at x = {x}");
+        }
+        var corner = new Vector3(gridEnd + 0.01f, gridEnd + 0.01f, 0);
+        Assert.True(sdf.Distance(corner) <= corner.Length() - r && sdf.Distance(corner) > sdf.Band);
     }
 
     [Fact]
