@@ -49,7 +49,7 @@ internal sealed class FastVolumeSystem : IHairSystem, IFrameSplitter
     private float _curvature, _cell;
     // Per particle of the sample strands, packed sample after sample (sample strand s from _sampleAt[s]): D and S
     // interpolated there (zeros where nothing was sampled), so a particle's change is Σ t·(D − S·v) over its two samples.
-    // Packed, they take a quarter of the cache that particle-indexed buffers took between the substeps' data.
+    // Packed, only the samples' entries take room in the cache, side by side, not spread over particle-indexed arrays.
     private float[] _pushX = [], _pushY = [], _pushZ = [], _share = [];
     private int[] _sampleAt = [];
     private int _every;
