@@ -1,3 +1,4 @@
+using System.Diagnostics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
 using System.Runtime.Intrinsics;
@@ -10,18 +11,29 @@ namespace HairSim.Fast;
 /// Fast <see cref="MeshCollideSystem"/>: on strand chunks, 8 strands at a time (AVX2 gathers of the distance field),
 /// each lane walking its strand from root to tip exactly as the reference does (particle push, then the segment's
 /// midpoint test with both ends pushed again), with every operation in the reference's order, so a chunk gives the
-/// reference's bits (tested). Most particles are far from the mesh: a 4 × 4 × 4-cell brick's lower bound of the
-/// field (<see cref="SignedDistanceField.Bricks"/>, one gather from a small table) settles them without the
-/// eight-value sample. The bound only skips samples whose result could not change a decision: a particle whose
-/// brick lies farther than the margin plus half the chunk's longest segment (plus the trilinear slack) is neither
-/// pushed nor starts a midpoint test, and a midpoint whose brick lies beyond the margin is not pushed. A row whose lanes
-/// have all stayed within their clearance of where the row was last measured (the distance beyond that far threshold,
-/// over √3) is settled without a sample at all, and so is a row's midpoint test when every tested midpoint stayed within
-/// its clearance (its distance beyond the margin, over √3); the records are carried from frame to frame, so this holds
-/// from a chunk's first substep on. Strands outside chunks (and machines without AVX-512) go through the reference system.
+/// reference's bits (tested). Most samples are skipped without changing a decision:
+/// <list type="bullet">
+/// <item>a 4 × 4 × 4-cell brick's lower bound of the field (<see cref="SignedDistanceField.Bricks"/>, one gather from a
+/// small table) settles particles farther than the margin plus half the chunk's longest segment (plus the trilinear
+/// slack): neither pushed nor starting a midpoint test; a midpoint whose brick lies beyond the margin is not pushed;</item>
+/// <item>each 8-lane row keeps a record of where it was last measured and what (carried from frame to frame): a row
+/// whose lanes all stayed within their clearance of it (the distance beyond that far threshold, over √3) is settled
+/// without a sample, and so is a row's midpoint test when every tested midpoint stayed within its clearance;</item>
+/// <item>a row nearer than that whose lanes all stay above the margin by √3 × their move is settled with bounds (record
+/// ± √3 × move): not pushed, and measured only if a midpoint decision falls between its bounds.</item>
+/// </list>
+/// Strands outside chunks (and machines without AVX-512) go through the reference system.
 /// </summary>
+[SkipLocalsInit]
 public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
 {
+    /// <summary>Debug builds count how rows were settled, so tests can see each path taken (no cost in release builds).</summary>
+    internal static class Counts
+    {
+        internal static long BoundedRows, Measured;
+        [Conditional("DEBUG")] internal static void Add(ref long count) => Interlocked.Increment(ref count);
+    }
+
     private readonly MeshCollideSystem _reference = new();
     private readonly HairScene? _scene;
     // This frame's mesh colliders and each one's pose per substep ([substep × count + mesh]).
@@ -57,12 +69,16 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
 
     // Clearances carried from frame to frame, per mesh collider: for each particle slot, its record (each 8 lanes of a
     // chunk row as the thread memo keeps them), in the chunk's row layout at 4 × its first particle. A record is a fact
-    // about the field, true whichever particle reads it (the field is at least d at this head-space point), so it holds
-    // across frames, edits, margins and other chunk boundaries, and is dropped only when the field changes. With them a chunk's first substep settles its far rows as its later substeps do, instead of
-    // sampling every row again. The midpoints' records stay in the thread memo, from the chunk's first substep on:
-    // carried too, they made no measurable difference and doubled the block.
+    // about the field, true whichever particle reads it (the field is at least d at this head-space point, and exactly d
+    // below the far distance stamped with it), so it holds across frames, edits, margins and other chunk boundaries, and
+    // is dropped only when the field changes. With them a chunk's first substep settles rows as its later substeps do,
+    // instead of sampling every row again. The midpoints' records stay in the thread memo, from the chunk's first
+    // substep on: carried too (2026-11-27 again), the doubled block made frames slower.
     private const int CarryFloats = ClearFloats / 8; // per particle: its record's x, y, z and distance
     private float[]?[] _carry = [];
+    // Per mesh, for each 8-lane row of records (at its first particle / 8): the far distance of the chunk that wrote
+    // it, below which the record's distances are exact (above it, bounds). −∞: none exact.
+    private float[]?[] _carryFar = [];
     private SignedDistanceField?[] _carryField = [];
 
     private void PrepareCarriedClearances()
@@ -70,18 +86,23 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         var w = _scene?.World;
         int n = _colliders.Length;
         if (w == null || n == 0) return;
-        if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryField, n); }
+        if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryFar, n); Array.Resize(ref _carryField, n); }
         long size = (long)CarryFloats * w.ParticleCount;
         for (int m = 0; m < n; m++)
         {
             var mc = _colliders[m];
             var carry = _carry[m];
             bool fresh = carry == null || carry.Length != size;
-            if (fresh) _carry[m] = carry = GC.AllocateUninitializedArray<float>((int)size, pinned: true);
+            if (fresh)
+            {
+                _carry[m] = carry = GC.AllocateUninitializedArray<float>((int)size, pinned: true);
+                _carryFar[m] = GC.AllocateUninitializedArray<float>(w.ParticleCount / 8 + 2, pinned: true);
+            }
             if (fresh || !ReferenceEquals(_carryField[m], mc.Field))
             {
                 // −1 everywhere: no distance that settles anything, so every record misses until a measure fills it.
                 Array.Fill(carry!, -1f);
+                Array.Fill(_carryFar[m]!, float.NegativeInfinity);
                 _carryField[m] = mc.Field;
             }
         }
@@ -123,14 +144,22 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             {
                 float* memo = CornerMemo.For(m, field);
                 float* clear = memo + 2 * MemoFloats, midClear = memo + 2 * MemoFloats + ClearanceFloats;
+                float* stamps = memo + 2 * MemoFloats + 2 * ClearanceFloats;
                 var carry = carried ? _carry[m] : null;
                 if (carry != null && (long)CarryFloats * (chunk.Firsts[0] + L * chunk.Height) <= carry.Length)
                 {
-                    // Pinned: its records are read and written in place.
+                    // Pinned: its records are read and written in place. Row o's stamp is at (first + o) / 8, which is
+                    // first / 8 + o / 8 (o is a multiple of 8): no two rows share one.
                     clear = (float*)Unsafe.AsPointer(ref carry[CarryFloats * chunk.Firsts[0]]);
+                    stamps = (float*)Unsafe.AsPointer(ref _carryFar[m]![chunk.Firsts[0] >> 3]);
                 }
-                else carry = null;
-                var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats, clear, midClear,
+                else
+                {
+                    carry = null;
+                    // The thread's records are another chunk's at its first substep: none of this one's.
+                    if (substep == 0) new Span<float>(stamps, chunk.Height * L / 8).Fill(float.NegativeInfinity);
+                }
+                var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats, clear, midClear, stamps,
                     reuse: substep > 0 || carry != null, reuseMidpoints: substep > 0);
                 for (int g = 0; g < L; g += 8)
                     k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
@@ -144,8 +173,15 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     {
         const int L = StrandChunk.Lanes;
         ref float rest0 = ref chunk.Row(StrandChunk.RestLength, 0);
-        var longest = Vector256<float>.Zero;
-        for (int i = L, n = chunk.Height * L; i < n; i += 8) longest = Vector256.Max(longest, Vector256.LoadUnsafe(ref rest0, (nuint)i));
+        // maxps, not Vector256.Max (its IEEE −0/NaN handling is a chain of three instructions per row, and this runs
+        // every substep): rest lengths are positive and finite. A row at a time, one accumulator per 8 lanes.
+        Vector256<float> a = Vector256<float>.Zero, b = a, c = a, d = a;
+        for (int i = L, n = chunk.Height * L; i < n; i += L)
+        {
+            a = Avx.Max(a, Vector256.LoadUnsafe(ref rest0, (nuint)i)); b = Avx.Max(b, Vector256.LoadUnsafe(ref rest0, (nuint)(i + 8)));
+            c = Avx.Max(c, Vector256.LoadUnsafe(ref rest0, (nuint)(i + 16))); d = Avx.Max(d, Vector256.LoadUnsafe(ref rest0, (nuint)(i + 24)));
+        }
+        var longest = Avx.Max(Avx.Max(a, b), Avx.Max(c, d));
         float maxRest = 0f;
         for (int l = 0; l < 8; l++) maxRest = MathF.Max(maxRest, longest.GetElement(l));
         return maxRest;
@@ -162,7 +198,9 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private const int ClearFloats = 32;
     /// <summary>Floats of one mesh's memos per thread: particle and midpoint corners, then the rows' clearances.</summary>
     private const int ClearanceFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8 * ClearFloats;
-    private const int SlotFloats = 2 * MemoFloats + 2 * ClearanceFloats;
+    /// <summary>Floats of one mesh's row stamps per thread: one per 8-lane row (see <see cref="Kernel"/>'s intervals).</summary>
+    private const int StampFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8;
+    private const int SlotFloats = 2 * MemoFloats + 2 * ClearanceFloats + StampFloats;
     /// <summary>
     /// 1/√3 less a margin: the trilinear field changes by at most √3 × a move (each axis's slope is a blend of grid
     /// differences of at most one cell per cell), and the brick bounds and exact samples it is compared against carry
@@ -199,7 +237,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 // No cell has index −1: every lookup misses until a gather fills the row.
                 for (int r = 0; r < 2 * MemoFloats; r += CornerFloats) Vector256.Create(-1).AsSingle().Store(slot + r);
                 // Clearances are lower bounds of this field: none carried over from another (−1: never within).
-                for (int r = 2 * MemoFloats; r < SlotFloats; r += ClearFloats) Vector256.Create(-1f).Store(slot + r + 24);
+                for (int r = 2 * MemoFloats; r < 2 * MemoFloats + 2 * ClearanceFloats; r += ClearFloats) Vector256.Create(-1f).Store(slot + r + 24);
                 memo._fields[mesh] = field;
             }
             return slot;
@@ -217,7 +255,9 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private unsafe readonly struct Kernel
     {
         private readonly float* _d, _bricks, _particleCorners, _midpointCorners, _clearance, _midpointClearance;
+        private readonly float* _stamps;
         private readonly bool _reuse, _reuseMidpoints;
+        private readonly float _farScalar;
         private readonly int _sy, _sz;
         private readonly Vector256<float> _ox, _oy, _oz, _inv, _cell, _hx, _hy, _hz, _band, _margin, _threshold, _far, _slide, _tx, _ty, _tz;
         private readonly Vector256<float> _l00, _l01, _l02, _l10, _l11, _l12, _l20, _l21, _l22;
@@ -225,8 +265,9 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         private readonly Vector256<int> _nx, _nxy, _bx, _bxy;
 
         public Kernel(MeshCollider mc, float* d, float* bricks, float maxRest, float slide, in MeshCollideSystem.Pose pose, float* particleCorners, float* midpointCorners,
-            float* clearance, float* midpointClearance, bool reuse, bool reuseMidpoints)
+            float* clearance, float* midpointClearance, float* stamps, bool reuse, bool reuseMidpoints)
         {
+            _stamps = stamps;
             var f = mc.Field;
             _d = d; _bricks = bricks; _particleCorners = particleCorners; _midpointCorners = midpointCorners; _clearance = clearance; _reuse = reuse; _reuseMidpoints = reuseMidpoints;
             _midpointClearance = midpointClearance;
@@ -238,7 +279,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             _margin = Vector256.Create(mc.Margin);
             float threshold = MeshCollideSystem.MidpointThreshold(mc);
             _threshold = Vector256.Create(threshold);
-            _far = Vector256.Create(FarDistance(mc, maxRest));
+            _farScalar = FarDistance(mc, maxRest);
+            _far = Vector256.Create(_farScalar);
             _slide = Vector256.Create(slide);
             _tx = Vector256.Create(pose.T.X); _ty = Vector256.Create(pose.T.Y); _tz = Vector256.Create(pose.T.Z);
             ref readonly var l = ref pose.ToLocal;
@@ -256,8 +298,11 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         /// <summary>Lanes g … g + 7 of the chunk, root to tip, as <see cref="MeshCollideSystem.Collide"/> walks each strand.</summary>
         public void Column(in Rows r, int g, int height, Vector256<int> live)
         {
-            var previous = Vector256<float>.Zero;
-            var all = Vector256<float>.AllBitsSet;
+            // Each row's distance as bounds: lo = hi where exact; a row settled by its record has lo below and hi above
+            // the exact value in its "loose" lanes, measured only if a decision needs it (see PushOutTracked).
+            Vector256<float> prevLo = default, prevHi = default, prevLoose = default;
+            nuint prevO = 0;
+            bool prevFar = false;
             // Rows pinned in every lane (the roots) are never moved, and neither is a segment between two of them:
             // such a row's distance is needed only as the previous one of a segment that can move. Skipping the rest
             // changes no decision and no value (the roots are always near the scalp, so these were exact samples).
@@ -267,17 +312,67 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 nuint o = (nuint)(k * StrandChunk.Lanes + g);
                 bool pinnedNext = k + 1 < height && AllPinned(in r, o + StrandChunk.Lanes);
                 if (pinned && pinnedNext) { pinnedBefore = true; pinned = true; continue; }
-                var d = PushOut(all, r, o, track: true);
-                if (k > 0 && !(pinned && pinnedBefore))
+                var lo = PushOutTracked(r, o, out var hi, out var loose, out bool far);
+                // A row at the far distance starts no midpoint test, nor ends one (the far distance less half any
+                // segment of the chunk is above the threshold): most rows of hanging hair end here.
+                if (k > 0 && !(pinned && pinnedBefore) && !far && !prevFar)
                 {
                     var alive = Vector256.GreaterThan(live, Vector256.Create(k)).AsSingle();
-                    var rest = Vector256.LoadUnsafe(ref r.Rest, o);
-                    var test = alive & Vector256.LessThan(Avx.Max(previous, d) - Vector256.Create(0.5f) * rest, _threshold);
-                    if (test != Vector256<float>.Zero) d = Midpoint(test, r, o - StrandChunk.Lanes, o, d);
+                    var half = Vector256.Create(0.5f) * Vector256.LoadUnsafe(ref r.Rest, o);
+                    // The reference's test is monotone in both distances: where the lower bounds say no test, or the
+                    // upper bounds say test, the exact values say the same. Elsewhere the exact values decide.
+                    var test = alive & Vector256.LessThan(Avx.Max(prevLo, lo) - half, _threshold);
+                    // (max(a, b) − h < t) is (a − h < t) and (b − h < t): an end whose upper bound passes is not what
+                    // leaves a lane open, so only the other end is measured.
+                    var prevBelow = Vector256.LessThan(prevHi - half, _threshold);
+                    var below = Vector256.LessThan(hi - half, _threshold);
+                    var open = test & ~(prevBelow & below);
+                    if (open != Vector256<float>.Zero)
+                    {
+                        if ((open & ~prevBelow & prevLoose) != Vector256<float>.Zero) Measure(r, prevO, ref prevLoose, ref prevLo, ref prevHi);
+                        if ((open & ~below & loose) != Vector256<float>.Zero) Measure(r, o, ref loose, ref lo, ref hi);
+                        test = alive & Vector256.LessThan(Avx.Max(prevLo, lo) - half, _threshold);
+                    }
+                    if (test != Vector256<float>.Zero)
+                    {
+                        lo = Midpoint(test, r, o - StrandChunk.Lanes, o, lo, out var hit);
+                        hi = Vector256.ConditionalSelect(hit, lo, hi);
+                        loose = Vector256.AndNot(loose, hit);
+                    }
                 }
-                previous = d;
+                prevLo = lo; prevHi = hi; prevLoose = loose; prevO = o; prevFar = far;
                 pinnedBefore = pinned; pinned = pinnedNext;
             }
+        }
+
+        /// <summary>
+        /// The exact distances of row o's loose lanes (lanes settled by their record, not moved since): lo and hi
+        /// become the value the reference has. The row is measured afresh, and that is recorded.
+        /// </summary>
+        private void Measure(in Rows r, nuint o, ref Vector256<float> loose, ref Vector256<float> lo, ref Vector256<float> hi)
+        {
+            var x = Vector256.LoadUnsafe(ref r.X, o); var y = Vector256.LoadUnsafe(ref r.Y, o); var z = Vector256.LoadUnsafe(ref r.Z, o);
+            ToLocal(x - _tx, y - _ty, z - _tz, out var lx, out var ly, out var lz);
+            var d = Distance(lx, ly, lz, _particleCorners + o * CornerFloats / 8);
+            Record(o, lx, ly, lz, d);
+            lo = Vector256.ConditionalSelect(loose, d, lo);
+            hi = Vector256.ConditionalSelect(loose, Upper(d), hi);
+            loose = Vector256<float>.Zero;
+            Counts.Add(ref Counts.Measured);
+        }
+
+        /// <summary>An upper bound of a distance from <see cref="Distance"/>: itself below the far distance (exact), else none.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> Upper(Vector256<float> d) =>
+            Vector256.ConditionalSelect(Vector256.LessThan(d, _far), d, Vector256.Create(float.PositiveInfinity));
+
+        /// <summary>Remembers where row o was measured and what (a lower bound; exact below the far distance, which is stamped with it).</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private void Record(nuint o, Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> d)
+        {
+            float* clear = _clearance + o * ClearFloats / 8;
+            lx.Store(clear); ly.Store(clear + 8); lz.Store(clear + 16); d.Store(clear + 24);
+            _stamps[o / 8] = _farScalar;
         }
 
         /// <summary>Every lane of the row at o pinned (inverse mass 0).</summary>
@@ -302,38 +397,71 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         }
 
         /// <summary>
-        /// The particles of row o in <paramref name="mask"/> pushed out to the margin (MeshCollideSystem.PushOut);
-        /// returns each lane's distance, exact wherever it could change a decision (see the class summary).
+        /// Row o's particles pushed out to the margin as <see cref="PushOut"/> does, with what the records settle: returns
+        /// a lower bound of each lane's distance, and in <paramref name="hi"/> an upper bound (equal where exact). A row
+        /// every lane of which is still within its clearance of its last measure is settled at the far distance
+        /// (<paramref name="far"/>: it can neither be pushed nor start a midpoint test). A row whose lanes all stay above
+        /// the margin by √3 × their move is settled with bounds (record ± √3 × move) in every lane (<paramref name="loose"/>):
+        /// not pushed, and measured again only if a midpoint decision needs the exact value (<see cref="Column"/>).
         /// </summary>
-        private Vector256<float> PushOut(Vector256<float> mask, in Rows r, nuint o, bool track = false)
+        private Vector256<float> PushOutTracked(in Rows r, nuint o, out Vector256<float> hi, out Vector256<float> loose, out bool far)
+        {
+            far = false;
+            var x = Vector256.LoadUnsafe(ref r.X, o); var y = Vector256.LoadUnsafe(ref r.Y, o); var z = Vector256.LoadUnsafe(ref r.Z, o);
+            ToLocal(x - _tx, y - _ty, z - _tz, out var lx, out var ly, out var lz);
+            if (_reuse)
+            {
+                // The field moves by at most √3 × the move: a record keeps the distance, not the clearance, so it holds
+                // for whichever chunk's far distance reads it.
+                float* clear = _clearance + o * ClearFloats / 8;
+                var mx = lx - Vector256.Load(clear); var my = ly - Vector256.Load(clear + 8); var mz = lz - Vector256.Load(clear + 16);
+                var m2 = mx * mx + my * my + mz * mz;
+                var recorded = Vector256.Load(clear + 24);
+                var c = Avx.Max(recorded - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
+                if (Vector256.LessThanAll(m2, c * c)) { hi = Vector256.Create(float.PositiveInfinity); loose = Vector256<float>.Zero; far = true; return _far; }
+                {
+                    // Every lane above the margin by its move: not pushed; the exact value lies within ± √3 × the move
+                    // (an upper bound only where the record is exact: below the far distance of the visit that wrote it).
+                    var move = Vector256.Sqrt(m2) * Vector256.Create(1f / ClearanceShare);
+                    var lower = recorded - move;
+                    if (Vector256.GreaterThanOrEqualAll(lower, _margin))
+                    {
+                        hi = Vector256.ConditionalSelect(Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8])), recorded + move,
+                            Vector256.Create(float.PositiveInfinity));
+                        loose = Vector256<float>.AllBitsSet;
+                        Counts.Add(ref Counts.BoundedRows);
+                        return lower;
+                    }
+                }
+            }
+            var d = Distance(lx, ly, lz, _particleCorners + o * CornerFloats / 8);
+            Record(o, lx, ly, lz, d);
+            d = Push(Vector256<float>.AllBitsSet, r, o, x, y, z, lx, ly, lz, d);
+            hi = Upper(d); loose = Vector256<float>.Zero;
+            return d;
+        }
+
+        /// <summary>The particles of row o in <paramref name="mask"/> pushed out to the margin (MeshCollideSystem.PushOut); returns their distances.</summary>
+        private Vector256<float> PushOut(Vector256<float> mask, in Rows r, nuint o)
         {
             var x = Vector256.LoadUnsafe(ref r.X, o); var y = Vector256.LoadUnsafe(ref r.Y, o); var z = Vector256.LoadUnsafe(ref r.Z, o);
             ToLocal(x - _tx, y - _ty, z - _tz, out var lx, out var ly, out var lz);
-            float* clear = _clearance + o * ClearFloats / 8;
-            if (track && _reuse)
-            {
-                // Every lane still within its clearance of where the row was last measured (this frame or an earlier
-                // one): the field there is at least the far distance (it moves by at most √3 × the move), which settles
-                // the row as an exact sample would (not pushed, no midpoint test from it). A record keeps the distance,
-                // not the clearance, so it holds for whichever chunk's far distance reads it.
-                var mx = lx - Vector256.Load(clear); var my = ly - Vector256.Load(clear + 8); var mz = lz - Vector256.Load(clear + 16);
-                var c = Avx.Max(Vector256.Load(clear + 24) - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
-                if (Vector256.LessThanAll(mx * mx + my * my + mz * mz, c * c)) return _far;
-            }
+            var d = Distance(lx, ly, lz, _particleCorners + o * CornerFloats / 8);
+            return Push(mask, r, o, x, y, z, lx, ly, lz, d);
+        }
+
+        /// <summary>Pushes the lanes in <paramref name="mask"/> below the margin out (up to three steps); returns the distances after.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> Push(Vector256<float> mask, in Rows r, nuint o, Vector256<float> x, Vector256<float> y, Vector256<float> z,
+            Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> d)
+        {
             float* corners = _particleCorners + o * CornerFloats / 8;
-            var d = Distance(lx, ly, lz, corners);
-            if (track)
-            {
-                // Where it was measured and what: each lane may move (d − far)/√3 before the field there could fall below
-                // the far distance (none for a lane nearer than that, so it is measured every substep).
-                lx.Store(clear); ly.Store(clear + 8); lz.Store(clear + 16); d.Store(clear + 24);
-            }
             var push = mask & Vector256.LessThan(d, _margin) & ~Vector256.Equals(Vector256.LoadUnsafe(ref r.M, o), Vector256<float>.Zero);
             if (push == Vector256<float>.Zero) return d;
             var running = push;
             for (int it = 0; it < 3; it++)
             {
-                Gradient(lx, ly, lz, corners, out var gx, out var gy, out var gz);
+                Gradient(lx, ly, lz, running, corners, out var gx, out var gy, out var gz);
                 var g2 = gx * gx + gy * gy + gz * gz;
                 running &= Vector256.GreaterThan(g2, Vector256.Create(1e-12f));
                 if (running == Vector256<float>.Zero) break;
@@ -357,8 +485,9 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         }
 
         /// <summary>The midpoint test of the segments ending at row o1 (lanes in <paramref name="test"/>); returns the distances of row o1.</summary>
-        private Vector256<float> Midpoint(Vector256<float> test, in Rows r, nuint o0, nuint o1, Vector256<float> d)
+        private Vector256<float> Midpoint(Vector256<float> test, in Rows r, nuint o0, nuint o1, Vector256<float> d, out Vector256<float> hit)
         {
+            hit = Vector256<float>.Zero;
             var half = Vector256.Create(0.5f);
             var x0 = Vector256.LoadUnsafe(ref r.X, o0); var y0 = Vector256.LoadUnsafe(ref r.Y, o0); var z0 = Vector256.LoadUnsafe(ref r.Z, o0);
             var x1 = Vector256.LoadUnsafe(ref r.X, o1); var y1 = Vector256.LoadUnsafe(ref r.Y, o1); var z1 = Vector256.LoadUnsafe(ref r.Z, o1);
@@ -382,10 +511,10 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 Clearance(clear, lx, ly, lz, inside & brick);
                 return d;
             }
-            var dm = Sample(ix, iy, iz, fx, fy, fz, _midpointCorners + o1 * CornerFloats / 8, out var gx, out var gy, out var gz);
+            var dm = Sample(ix, iy, iz, fx, fy, fz, near, _midpointCorners + o1 * CornerFloats / 8, out var gx, out var gy, out var gz);
             Clearance(clear, lx, ly, lz, inside & Vector256.ConditionalSelect(near, dm, brick));
             var g2 = gx * gx + gy * gy + gz * gz;
-            var hit = near & Vector256.LessThan(dm, _margin) & Vector256.GreaterThan(g2, Vector256.Create(1e-12f));
+            hit = near & Vector256.LessThan(dm, _margin) & Vector256.GreaterThan(g2, Vector256.Create(1e-12f));
             if (hit == Vector256<float>.Zero) return d;
             var len = Vector256.Sqrt(g2);
             ToWorld(gx / len, gy / len, gz / len, out var nx, out var ny, out var nz);
@@ -482,7 +611,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             if (inside != Vector256<float>.AllBitsSet) bound = Vector256.ConditionalSelect(inside, bound, Outside(rawX, rawY, rawZ));
             var exact = inside & Vector256.LessThan(bound, _far);
             if (exact == Vector256<float>.Zero) return bound;
-            Corners(ix + _nx * iy + _nxy * iz, corners, out var d000, out var d100, out var d010, out var d110, out var d001, out var d101, out var d011, out var d111);
+            Corners(ix + _nx * iy + _nxy * iz, exact, corners, out var d000, out var d100, out var d010, out var d110, out var d001, out var d101, out var d011, out var d111);
             var x00 = d000 + fx * (d100 - d000); var x10 = d010 + fx * (d110 - d010);
             var x01 = d001 + fx * (d101 - d001); var x11 = d011 + fx * (d111 - d011);
             var y0 = x00 + fy * (x10 - x00); var y1 = x01 + fy * (x11 - x01);
@@ -497,10 +626,11 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         /// from L1 instead of 8 gathers. A memo holds field values, so a hit gives the bits a gather would.
         /// </summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        private void Corners(Vector256<int> i, float* memo, out Vector256<float> d000, out Vector256<float> d100, out Vector256<float> d010, out Vector256<float> d110,
+        private void Corners(Vector256<int> i, Vector256<float> need, float* memo, out Vector256<float> d000, out Vector256<float> d100, out Vector256<float> d010, out Vector256<float> d110,
             out Vector256<float> d001, out Vector256<float> d101, out Vector256<float> d011, out Vector256<float> d111)
         {
-            if (Vector256.EqualsAll(Vector256.Load((int*)memo), i))
+            // Only the lanes whose values are used must match: the others take the memo's values and drop them.
+            if (Vector256.EqualsAll(Vector256.Equals(Vector256.Load((int*)memo), i) | ~need.AsInt32(), Vector256<int>.AllBitsSet))
             {
                 d000 = Vector256.Load(memo + 8); d100 = Vector256.Load(memo + 16); d010 = Vector256.Load(memo + 24); d110 = Vector256.Load(memo + 32);
                 d001 = Vector256.Load(memo + 40); d101 = Vector256.Load(memo + 48); d011 = Vector256.Load(memo + 56); d111 = Vector256.Load(memo + 64);
@@ -530,18 +660,18 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         }
 
         /// <summary>The field's gradient at head-space points (zero outside the grid), as SignedDistanceField.SampleAt.</summary>
-        private void Gradient(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, float* corners, out Vector256<float> gx, out Vector256<float> gy, out Vector256<float> gz)
+        private void Gradient(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> need, float* corners, out Vector256<float> gx, out Vector256<float> gy, out Vector256<float> gz)
         {
             var inside = Grid(lx, ly, lz, out var ix, out var iy, out var iz, out var fx, out var fy, out var fz);
-            Sample(ix, iy, iz, fx, fy, fz, corners, out gx, out gy, out gz);
+            Sample(ix, iy, iz, fx, fy, fz, need, corners, out gx, out gy, out gz);
             gx &= inside; gy &= inside; gz &= inside;
         }
 
         /// <summary>Value and gradient in the cells (ix, iy, iz) at fractions (fx, fy, fz): SignedDistanceField.SampleAt's arithmetic.</summary>
         private Vector256<float> Sample(Vector256<int> ix, Vector256<int> iy, Vector256<int> iz, Vector256<float> fx, Vector256<float> fy, Vector256<float> fz,
-            float* corners, out Vector256<float> gx, out Vector256<float> gy, out Vector256<float> gz)
+            Vector256<float> need, float* corners, out Vector256<float> gx, out Vector256<float> gy, out Vector256<float> gz)
         {
-            Corners(ix + _nx * iy + _nxy * iz, corners, out var d000, out var d100, out var d010, out var d110, out var d001, out var d101, out var d011, out var d111);
+            Corners(ix + _nx * iy + _nxy * iz, need, corners, out var d000, out var d100, out var d010, out var d110, out var d001, out var d101, out var d011, out var d111);
             var x00 = d000 + fx * (d100 - d000); var x10 = d010 + fx * (d110 - d010);
             var x01 = d001 + fx * (d101 - d001); var x11 = d011 + fx * (d111 - d011);
             var y0 = x00 + fy * (x10 - x00); var y1 = x01 + fy * (x11 - x01);

@@ -61,6 +61,15 @@ public sealed class FastMeshCollideTests
         }
         Assert.Equal(0, chunked.World.CountNonFinite());
         if (ChunksExpected) Assert.True(stepped >= 40 * 24 / (cut ? 3 : 1), $"only {stepped} chunks stepped");
+#if DEBUG
+        // The bits above came through rows settled with bounds and rows measured later for a decision, not only through
+        // exact samples (debug builds count them; other tests running meanwhile can only add to the counts).
+        if (ChunksExpected)
+        {
+            Assert.True(FastMeshCollideSystem.Counts.BoundedRows > 0, "no row was settled with bounds");
+            Assert.True(FastMeshCollideSystem.Counts.Measured > 0, "no bounded row was measured for a decision");
+        }
+#endif
     }
 
     /// <summary>The same grid with every distance <paramref name="by"/> less: the head that much thicker.</summary>
