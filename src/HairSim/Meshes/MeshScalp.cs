@@ -104,7 +104,7 @@ public static class MeshScalp
         var sheets = new List<int>[g.SheetCount];
         for (int s = 0; s < sheets.Length; s++) sheets[s] = new List<int>();
         for (int r = 0; r < roots.Count; r++) sheets[sheetOf[r]].Add(r);
-        var nonEmpty = sheets.Where(s => s.Count > 0).ToList();
+        var nonEmpty = SideBySide(sheets.Where(s => s.Count > 0).ToList(), roots);
         var perSheet = nonEmpty.Select(s => s.Count).ToArray();
         var particles = Enumerable.Repeat(g.ParticlesPerStrand, roots.Count).ToArray();
         var world = new HairWorld(perSheet, particles);
@@ -173,6 +173,30 @@ public static class MeshScalp
             kept.Add(c);
         }
         return kept;
+    }
+
+    /// <summary>
+    /// The sheets in an order that walks across the scalp (each next sheet the nearest one not yet taken, from the
+    /// lowest): k-means numbers its clusters in no spatial order, and the solver steps strands in memory order, so
+    /// sheets side by side in memory keep the collision's distance-field cells in cache from one strand chunk to the next.
+    /// </summary>
+    private static List<List<int>> SideBySide(List<List<int>> sheets, List<(Vector3 P, Vector3 N)> roots)
+    {
+        var centres = sheets.Select(s => s.Aggregate(Vector3.Zero, (a, r) => a + roots[r].P) / s.Count).ToArray();
+        var taken = new bool[sheets.Count];
+        var order = new List<List<int>>(sheets.Count);
+        int at = 0;
+        for (int s = 1; s < centres.Length; s++) if (centres[s].Y < centres[at].Y) at = s;
+        while (true)
+        {
+            taken[at] = true;
+            order.Add(sheets[at]);
+            int next = -1; float best = float.MaxValue;
+            for (int s = 0; s < centres.Length; s++)
+                if (!taken[s] && Vector3.DistanceSquared(centres[s], centres[at]) is var d && d < best) { best = d; next = s; }
+            if (next < 0) return order;
+            at = next;
+        }
     }
 
     private static int[] KMeans(List<(Vector3 P, Vector3 N)> roots, int k, Random rng)
