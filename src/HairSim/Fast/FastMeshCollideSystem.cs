@@ -198,7 +198,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private const int ClearFloats = 32;
     /// <summary>Floats of one mesh's memos per thread: particle and midpoint corners, then the rows' clearances.</summary>
     private const int ClearanceFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8 * ClearFloats;
-    /// <summary>Floats of one mesh's row stamps per thread: one per 8-lane row (see <see cref="Kernel"/>'s intervals).</summary>
+    /// <summary>Floats of one mesh's row stamps per thread: one per 8-lane row, the far distance its record was written with.</summary>
     private const int StampFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8;
     private const int SlotFloats = 2 * MemoFloats + 2 * ClearanceFloats + StampFloats;
     /// <summary>
@@ -419,19 +419,17 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 var recorded = Vector256.Load(clear + 24);
                 var c = Avx.Max(recorded - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
                 if (Vector256.LessThanAll(m2, c * c)) { hi = Vector256.Create(float.PositiveInfinity); loose = Vector256<float>.Zero; far = true; return _far; }
+                // Every lane above the margin by its move: not pushed; the exact value lies within ± √3 × the move
+                // (an upper bound only where the record is exact: below the far distance of the visit that wrote it).
+                var move = Vector256.Sqrt(m2) * Vector256.Create(1f / ClearanceShare);
+                var lower = recorded - move;
+                if (Vector256.GreaterThanOrEqualAll(lower, _margin))
                 {
-                    // Every lane above the margin by its move: not pushed; the exact value lies within ± √3 × the move
-                    // (an upper bound only where the record is exact: below the far distance of the visit that wrote it).
-                    var move = Vector256.Sqrt(m2) * Vector256.Create(1f / ClearanceShare);
-                    var lower = recorded - move;
-                    if (Vector256.GreaterThanOrEqualAll(lower, _margin))
-                    {
-                        hi = Vector256.ConditionalSelect(Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8])), recorded + move,
-                            Vector256.Create(float.PositiveInfinity));
-                        loose = Vector256<float>.AllBitsSet;
-                        Counts.Add(ref Counts.BoundedRows);
-                        return lower;
-                    }
+                    hi = Vector256.ConditionalSelect(Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8])), recorded + move,
+                        Vector256.Create(float.PositiveInfinity));
+                    loose = Vector256<float>.AllBitsSet;
+                    Counts.Add(ref Counts.BoundedRows);
+                    return lower;
                 }
             }
             var d = Distance(lx, ly, lz, _particleCorners + o * CornerFloats / 8);
