@@ -63,7 +63,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         // The calling thread's memos are made here, in the first frame, not on the first chunk it happens to take:
         // which chunks a thread takes varies, and a step must allocate nothing once the scene runs.
         for (int m = 0; m < n; m++) CornerMemo.For(m, _colliders[m].Field);
-        PrepareCarriedClearances();
+        PrepareCarriedClearances(ctx.Teleported);
         return true;
     }
 
@@ -80,12 +80,19 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     // it, below which the record's distances are exact (above it, bounds). −∞: none exact.
     private float[]?[] _carryFar = [];
     private SignedDistanceField?[] _carryField = [];
+    // The world's edit stamp the records were written under, and whether the last frame teleported: which strands make
+    // a chunk changes only with an edit or a teleport, and a chunk starting elsewhere lays its rows over other rows'
+    // records (with strand lengths that are not a multiple of 8, off by part of a row: one row's x beside another's distance).
+    private int _carryEdit = -1;
+    private bool _carryTeleported;
 
-    private void PrepareCarriedClearances()
+    private void PrepareCarriedClearances(bool teleported)
     {
         var w = _scene?.World;
         int n = _colliders.Length;
         if (w == null || n == 0) return;
+        bool relaid = w.EditStamp != _carryEdit || teleported || _carryTeleported;
+        _carryEdit = w.EditStamp; _carryTeleported = teleported;
         if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryFar, n); Array.Resize(ref _carryField, n); }
         long size = (long)CarryFloats * w.ParticleCount;
         for (int m = 0; m < n; m++)
@@ -98,7 +105,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 _carry[m] = carry = GC.AllocateUninitializedArray<float>((int)size, pinned: true);
                 _carryFar[m] = GC.AllocateUninitializedArray<float>(w.ParticleCount / 8 + 2, pinned: true);
             }
-            if (fresh || !ReferenceEquals(_carryField[m], mc.Field))
+            if (fresh || relaid || !ReferenceEquals(_carryField[m], mc.Field))
             {
                 // −1 everywhere: no distance that settles anything, so every record misses until a measure fills it.
                 Array.Fill(carry!, -1f);
@@ -255,6 +262,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private unsafe readonly struct Kernel
     {
         private readonly float* _d, _bricks, _particleCorners, _midpointCorners, _clearance, _midpointClearance;
+        private readonly SignedDistanceField _field;
         private readonly float* _stamps;
         private readonly bool _reuse, _reuseMidpoints;
         private readonly float _farScalar;
@@ -269,6 +277,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         {
             _stamps = stamps;
             var f = mc.Field;
+            _field = f;
             _d = d; _bricks = bricks; _particleCorners = particleCorners; _midpointCorners = midpointCorners; _clearance = clearance; _reuse = reuse; _reuseMidpoints = reuseMidpoints;
             _midpointClearance = midpointClearance;
             _sy = f.Nx; _sz = f.Nx * f.Ny;
@@ -361,6 +370,30 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             Counts.Add(ref Counts.Measured);
         }
 
+        /// <summary>
+        /// Debug builds check every row a record settled, like a NaN checker: at each lane whose record and present
+        /// points lie inside the grid, the reference's distance lies within the bounds the record gave (the trilinear
+        /// field changes by at most √3 × a move there). Across the grid's boundary it need not: the field's extension
+        /// outside (the band plus the distance to the grid) is lower than the field just inside, so a record from
+        /// outside can claim less than a point inside has (harmless) and one from inside more than a point outside has
+        /// (a midpoint test the reference makes may be skipped there; it could push nothing while the surface lies
+        /// farther inside the boundary than half a segment and the margin: docs/meshes.md).
+        /// </summary>
+        [Conditional("DEBUG")]
+        private void CheckBounds(float* record, Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> lo, Vector256<float> hi)
+        {
+            var f = _field;
+            var inside = InGrid(lx, ly, lz) & InGrid(Vector256.Load(record), Vector256.Load(record + 8), Vector256.Load(record + 16));
+            for (int l = 0; l < 8; l++)
+            {
+                if (inside.AsInt32().GetElement(l) == 0) continue;
+                float x = lx.GetElement(l), y = ly.GetElement(l), z = lz.GetElement(l);
+                float d = f.DistanceAt(x, y, z), slack = 1e-5f * (MathF.Abs(d) + f.CellSize);
+                if (d < lo.GetElement(l) - slack || d > hi.GetElement(l) + slack)
+                    throw new InvalidOperationException($"A mesh record settled lane {l} at ({x}, {y}, {z}) within [{lo.GetElement(l)}, {hi.GetElement(l)}], where the field is {d}.");
+            }
+        }
+
         /// <summary>An upper bound of a distance from <see cref="Distance"/>: itself below the far distance (exact), else none.</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         private Vector256<float> Upper(Vector256<float> d) =>
@@ -418,17 +451,25 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 var m2 = mx * mx + my * my + mz * mz;
                 var recorded = Vector256.Load(clear + 24);
                 var c = Avx.Max(recorded - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
-                if (Vector256.LessThanAll(m2, c * c)) { hi = Vector256.Create(float.PositiveInfinity); loose = Vector256<float>.Zero; far = true; return _far; }
-                // Every lane above the margin by its move: not pushed; the exact value lies within ± √3 × the move
-                // (an upper bound only where the record is exact: below the far distance of the visit that wrote it).
+                if (Vector256.LessThanAll(m2, c * c))
+                {
+                    CheckBounds(clear, lx, ly, lz, _far, Vector256.Create(float.PositiveInfinity));
+                    hi = Vector256.Create(float.PositiveInfinity); loose = Vector256<float>.Zero; far = true; return _far;
+                }
+                // Every lane above the margin by its move: not pushed; the exact value lies within ± √3 × the move.
+                // An upper bound only where the record is exact (below the far distance of the visit that wrote it) and
+                // both points lie inside the grid: the field's extension outside (band plus the distance to the grid)
+                // is lower than the field just inside, so a move into the grid can raise the value by more.
                 var move = Vector256.Sqrt(m2) * Vector256.Create(1f / ClearanceShare);
                 var lower = recorded - move;
                 if (Vector256.GreaterThanOrEqualAll(lower, _margin))
                 {
-                    hi = Vector256.ConditionalSelect(Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8])), recorded + move,
-                        Vector256.Create(float.PositiveInfinity));
+                    var exact = Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8]))
+                        & InGrid(lx, ly, lz) & InGrid(Vector256.Load(clear), Vector256.Load(clear + 8), Vector256.Load(clear + 16));
+                    hi = Vector256.ConditionalSelect(exact, recorded + move, Vector256.Create(float.PositiveInfinity));
                     loose = Vector256<float>.AllBitsSet;
                     Counts.Add(ref Counts.BoundedRows);
+                    CheckBounds(clear, lx, ly, lz, lower, hi);
                     return lower;
                 }
             }
@@ -553,6 +594,15 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             Vector256.ConditionalSelect(m, (vx - vn * nx) * _slide, vx).StoreUnsafe(ref r.Vx, o);
             Vector256.ConditionalSelect(m, (vy - vn * ny) * _slide, vy).StoreUnsafe(ref r.Vy, o);
             Vector256.ConditionalSelect(m, (vz - vn * nz) * _slide, vz).StoreUnsafe(ref r.Vz, o);
+        }
+
+        /// <summary>The lanes whose head-space points lie inside the grid (its cells).</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> InGrid(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz)
+        {
+            var gx = (lx - _ox) * _inv; var gy = (ly - _oy) * _inv; var gz = (lz - _oz) * _inv;
+            return Vector256.GreaterThanOrEqual(gx, Vector256<float>.Zero) & Vector256.GreaterThanOrEqual(gy, Vector256<float>.Zero)
+                & Vector256.GreaterThanOrEqual(gz, Vector256<float>.Zero) & Vector256.LessThan(gx, _hx) & Vector256.LessThan(gy, _hy) & Vector256.LessThan(gz, _hz);
         }
 
         /// <summary>Grid coordinates of head-space points: the lanes inside the grid (the others get cell 0).</summary>

@@ -81,6 +81,42 @@ public sealed class FastMeshCollideTests
     }
 
     [Fact]
+    public void ClearancesSurviveChunksStartingElsewhereAfterAnEdit()
+    {
+        // Records are kept per particle slot in the chunk's row layout. With 20-particle strands, chunks that start 3
+        // strands later (a freed strand refuses the first chunk) lay their rows 7.5 rows off the old ones: records
+        // read there would mix one row's x with another's distance. The chunk path must keep the reference's bits.
+        var (mesh, field) = Head.Value;
+        HairScene Build() => MeshScalp.BuildScene(mesh, field,
+            new MeshGroomSettings { SheetCount = 8, StrandsPerSheet = 16, ParticlesPerStrand = 20, ScalpMaskThreshold = 0.5f },
+            new SimulationSettings { Path = SolverPath.Fast });
+        var chunked = Build();
+        var plain = Build();
+        var simC = new HairSimulation(chunked, dispatcher: SequentialDispatcher.Instance);
+        var simP = new HairSimulation(plain, dispatcher: SequentialDispatcher.Instance);
+        simP.Pipeline.UseStrandChunks = false;
+        int stepped = 0;
+        for (int f = 1; f <= 40; f++)
+        {
+            if (f == 16)
+                foreach (var w in new[] { chunked.World, plain.World })
+                {
+                    // Strand 2 let go: held by nothing, it leaves the chunk path, and chunks start from strand 3.
+                    int first = w.StrandFirst[2];
+                    float free = w.InvMass[first + w.StrandParticleCount[2] - 1];
+                    for (int i = first; i < first + w.StrandParticleCount[2]; i++) w.InvMass[i] = free;
+                    w.MarkEdited();
+                }
+            simC.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+            simP.Step(1f / 60f, HeadMotion.Shake(f / 60f));
+            if (f > 16) stepped += simC.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(chunked.World.BitEquals(plain.World), $"the chunk and reference mesh passes differ after frame {f}");
+        }
+        Assert.True(chunked.World.IsFreeStrand(2));
+        if (ChunksExpected) Assert.True(stepped >= 24 * 3, $"only {stepped} chunks stepped after the edit");
+    }
+
+    [Fact]
     public void TwoScenesWithDifferentFieldsOnOneThreadKeepTheReferenceBits()
     {
         // The chunk kernel remembers each row's last gathered cells per thread and mesh slot: a scene whose field is
