@@ -262,7 +262,9 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private unsafe readonly struct Kernel
     {
         private readonly float* _d, _bricks, _particleCorners, _midpointCorners, _clearance, _midpointClearance;
-        private readonly SignedDistanceField _field;
+#if DEBUG
+        private readonly SignedDistanceField _field; // for CheckBounds only: a reference in the kernel changes its release code
+#endif
         private readonly float* _stamps;
         private readonly bool _reuse, _reuseMidpoints;
         private readonly float _farScalar;
@@ -277,7 +279,9 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         {
             _stamps = stamps;
             var f = mc.Field;
+#if DEBUG
             _field = f;
+#endif
             _d = d; _bricks = bricks; _particleCorners = particleCorners; _midpointCorners = midpointCorners; _clearance = clearance; _reuse = reuse; _reuseMidpoints = reuseMidpoints;
             _midpointClearance = midpointClearance;
             _sy = f.Nx; _sz = f.Nx * f.Ny;
@@ -382,6 +386,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         [Conditional("DEBUG")]
         private void CheckBounds(float* record, Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> lo, Vector256<float> hi)
         {
+#if DEBUG
             var f = _field;
             var inside = InGrid(lx, ly, lz) & InGrid(Vector256.Load(record), Vector256.Load(record + 8), Vector256.Load(record + 16));
             for (int l = 0; l < 8; l++)
@@ -392,6 +397,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 if (d < lo.GetElement(l) - slack || d > hi.GetElement(l) + slack)
                     throw new InvalidOperationException($"A mesh record settled lane {l} at ({x}, {y}, {z}) within [{lo.GetElement(l)}, {hi.GetElement(l)}], where the field is {d}.");
             }
+#endif
         }
 
         /// <summary>An upper bound of a distance from <see cref="Distance"/>: itself below the far distance (exact), else none.</summary>
