@@ -606,10 +606,14 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         private Vector256<float> InGrid(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz)
         {
-            var gx = (lx - _ox) * _inv; var gy = (ly - _oy) * _inv; var gz = (lz - _oz) * _inv;
-            return Vector256.GreaterThanOrEqual(gx, Vector256<float>.Zero) & Vector256.GreaterThanOrEqual(gy, Vector256<float>.Zero)
-                & Vector256.GreaterThanOrEqual(gz, Vector256<float>.Zero) & Vector256.LessThan(gx, _hx) & Vector256.LessThan(gy, _hy) & Vector256.LessThan(gz, _hz);
+            return Inside((lx - _ox) * _inv, (ly - _oy) * _inv, (lz - _oz) * _inv);
         }
+
+        /// <summary>The lanes whose grid coordinates lie in a cell of the grid (0 ≤ g &lt; n − 1 on every axis).</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> Inside(Vector256<float> gx, Vector256<float> gy, Vector256<float> gz) =>
+            Vector256.GreaterThanOrEqual(gx, Vector256<float>.Zero) & Vector256.GreaterThanOrEqual(gy, Vector256<float>.Zero)
+            & Vector256.GreaterThanOrEqual(gz, Vector256<float>.Zero) & Vector256.LessThan(gx, _hx) & Vector256.LessThan(gy, _hy) & Vector256.LessThan(gz, _hz);
 
         /// <summary>Grid coordinates of head-space points: the lanes inside the grid (the others get cell 0).</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -625,8 +629,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         private Vector256<float> Cells(ref Vector256<float> gx, ref Vector256<float> gy, ref Vector256<float> gz, out Vector256<int> ix, out Vector256<int> iy, out Vector256<int> iz,
             out Vector256<float> fx, out Vector256<float> fy, out Vector256<float> fz)
         {
-            var inside = Vector256.GreaterThanOrEqual(gx, Vector256<float>.Zero) & Vector256.GreaterThanOrEqual(gy, Vector256<float>.Zero)
-                & Vector256.GreaterThanOrEqual(gz, Vector256<float>.Zero) & Vector256.LessThan(gx, _hx) & Vector256.LessThan(gy, _hy) & Vector256.LessThan(gz, _hz);
+            var inside = Inside(gx, gy, gz);
             gx &= inside; gy &= inside; gz &= inside;
             ix = Avx.ConvertToVector256Int32WithTruncation(gx); iy = Avx.ConvertToVector256Int32WithTruncation(gy); iz = Avx.ConvertToVector256Int32WithTruncation(gz);
             fx = gx - Avx.ConvertToVector256Single(ix); fy = gy - Avx.ConvertToVector256Single(iy); fz = gz - Avx.ConvertToVector256Single(iz);
