@@ -269,10 +269,10 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         private readonly bool _reuse, _reuseMidpoints;
         private readonly float _farScalar;
         private readonly int _sy, _sz;
-        private readonly Vector256<float> _ox, _oy, _oz, _inv, _cell, _hx, _hy, _hz, _band, _margin, _threshold, _far, _slide, _tx, _ty, _tz;
+        private readonly Vector256<float> _ox, _oy, _oz, _inv, _cell, _hx, _hy, _hz, _margin, _threshold, _far, _slide, _tx, _ty, _tz;
         private readonly Vector256<float> _l00, _l01, _l02, _l10, _l11, _l12, _l20, _l21, _l22;
         private readonly Vector256<float> _w00, _w01, _w02, _w10, _w11, _w12, _w20, _w21, _w22;
-        private readonly Vector256<int> _nx, _nxy, _bx, _bxy;
+        private readonly Vector256<int> _nx, _nxy, _bx, _bxy, _lastX, _lastY, _lastZ;
 
         public Kernel(MeshCollider mc, float* d, float* bricks, float maxRest, float slide, in MeshCollideSystem.Pose pose, float* particleCorners, float* midpointCorners,
             float* clearance, float* midpointClearance, float* stamps, bool reuse, bool reuseMidpoints)
@@ -288,7 +288,6 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             _ox = Vector256.Create(f.Origin.X); _oy = Vector256.Create(f.Origin.Y); _oz = Vector256.Create(f.Origin.Z);
             _inv = Vector256.Create(f.InvCell); _cell = Vector256.Create(f.CellSize);
             _hx = Vector256.Create((float)(f.Nx - 1)); _hy = Vector256.Create((float)(f.Ny - 1)); _hz = Vector256.Create((float)(f.Nz - 1));
-            _band = Vector256.Create(f.Band);
             _margin = Vector256.Create(mc.Margin);
             float threshold = MeshCollideSystem.MidpointThreshold(mc);
             _threshold = Vector256.Create(threshold);
@@ -306,6 +305,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             _w20 = Vector256.Create(w.S20); _w21 = Vector256.Create(w.S21); _w22 = Vector256.Create(w.S22);
             _nx = Vector256.Create(f.Nx); _nxy = Vector256.Create(f.Nx * f.Ny);
             _bx = Vector256.Create(f.BricksX); _bxy = Vector256.Create(f.BricksX * f.BricksY);
+            _lastX = Vector256.Create(f.Nx - 2); _lastY = Vector256.Create(f.Ny - 2); _lastZ = Vector256.Create(f.Nz - 2);
         }
 
         /// <summary>Lanes g … g + 7 of the chunk, root to tip, as <see cref="MeshCollideSystem.Collide"/> walks each strand.</summary>
@@ -375,23 +375,16 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         }
 
         /// <summary>
-        /// Debug builds check every row a record settled, like a NaN checker: at each lane whose record and present
-        /// points lie inside the grid, the reference's distance lies within the bounds the record gave (the trilinear
-        /// field changes by at most √3 × a move there). Across the grid's boundary it need not: the field's extension
-        /// outside (the band plus the distance to the grid) is lower than the field just inside, so a record from
-        /// outside can claim less than a point inside has (harmless) and one from inside more than a point outside has
-        /// (a midpoint test the reference makes may be skipped there; it could push nothing while the surface lies
-        /// farther inside the boundary than half a segment and the margin: docs/meshes.md).
+        /// Debug builds check every row a record settled, like a NaN checker: at each lane, the reference's distance lies
+        /// within the bounds the record gave (the field changes by at most √3 × a move, inside the grid and out).
         /// </summary>
         [Conditional("DEBUG")]
-        private void CheckBounds(float* record, Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> lo, Vector256<float> hi)
+        private void CheckBounds(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> lo, Vector256<float> hi)
         {
 #if DEBUG
             var f = _field;
-            var inside = InGrid(lx, ly, lz) & InGrid(Vector256.Load(record), Vector256.Load(record + 8), Vector256.Load(record + 16));
             for (int l = 0; l < 8; l++)
             {
-                if (inside.AsInt32().GetElement(l) == 0) continue;
                 float x = lx.GetElement(l), y = ly.GetElement(l), z = lz.GetElement(l);
                 float d = f.DistanceAt(x, y, z), slack = 1e-5f * (MathF.Abs(d) + f.CellSize);
                 if (d < lo.GetElement(l) - slack || d > hi.GetElement(l) + slack)
@@ -459,23 +452,20 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 var c = Avx.Max(recorded - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
                 if (Vector256.LessThanAll(m2, c * c))
                 {
-                    CheckBounds(clear, lx, ly, lz, _far, Vector256.Create(float.PositiveInfinity));
+                    CheckBounds(lx, ly, lz, _far, Vector256.Create(float.PositiveInfinity));
                     hi = Vector256.Create(float.PositiveInfinity); loose = Vector256<float>.Zero; far = true; return _far;
                 }
                 // Every lane above the margin by its move: not pushed; the exact value lies within ± √3 × the move.
-                // An upper bound only where the record is exact (below the far distance of the visit that wrote it) and
-                // both points lie inside the grid: the field's extension outside (band plus the distance to the grid)
-                // is lower than the field just inside, so a move into the grid can raise the value by more.
+                // An upper bound only where the record is exact (below the far distance of the visit that wrote it).
                 var move = Vector256.Sqrt(m2) * Vector256.Create(1f / ClearanceShare);
                 var lower = recorded - move;
                 if (Vector256.GreaterThanOrEqualAll(lower, _margin))
                 {
-                    var exact = Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8]))
-                        & InGrid(lx, ly, lz) & InGrid(Vector256.Load(clear), Vector256.Load(clear + 8), Vector256.Load(clear + 16));
+                    var exact = Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8]));
                     hi = Vector256.ConditionalSelect(exact, recorded + move, Vector256.Create(float.PositiveInfinity));
                     loose = Vector256<float>.AllBitsSet;
                     Counts.Add(ref Counts.BoundedRows);
-                    CheckBounds(clear, lx, ly, lz, lower, hi);
+                    CheckBounds(lx, ly, lz, lower, hi);
                     return lower;
                 }
             }
@@ -602,13 +592,6 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             Vector256.ConditionalSelect(m, (vz - vn * nz) * _slide, vz).StoreUnsafe(ref r.Vz, o);
         }
 
-        /// <summary>The lanes whose head-space points lie inside the grid (its cells).</summary>
-        [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        private Vector256<float> InGrid(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz)
-        {
-            return Inside((lx - _ox) * _inv, (ly - _oy) * _inv, (lz - _oz) * _inv);
-        }
-
         /// <summary>The lanes whose grid coordinates lie in a cell of the grid (0 ≤ g &lt; n − 1 on every axis).</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         private Vector256<float> Inside(Vector256<float> gx, Vector256<float> gy, Vector256<float> gz) =>
@@ -636,19 +619,6 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             return inside;
         }
 
-        /// <summary>The field's value outside the grid (SignedDistanceField.Outside): the band plus the distance to the grid.</summary>
-        [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        private Vector256<float> Outside(Vector256<float> gx, Vector256<float> gy, Vector256<float> gz)
-        {
-            var zero = Vector256<float>.Zero;
-            // maxps, not Vector256.Max (IEEE −0/NaN handling costs five instructions): they differ only on NaN and on
-            // ±0, which squares to the same value.
-            var dx = Avx.Max(Avx.Max(-gx, gx - _hx), zero);
-            var dy = Avx.Max(Avx.Max(-gy, gy - _hy), zero);
-            var dz = Avx.Max(Avx.Max(-gz, gz - _hz), zero);
-            return _band + Vector256.Sqrt(dx * dx + dy * dy + dz * dz) * _cell;
-        }
-
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         private Vector256<float> Brick(Vector256<int> ix, Vector256<int> iy, Vector256<int> iz)
         {
@@ -657,22 +627,42 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             return Avx2.GatherVector256(_bricks, b, 4);
         }
 
-        /// <summary>The field at head-space points (the band outside the grid), exact where a decision could depend on it, else a lower bound at or above the far threshold.</summary>
+        /// <summary>
+        /// The field at head-space points (outside the grid, the field at its nearest point plus the distance to it, as
+        /// SignedDistanceField.Outside), exact where a decision could depend on it, else a lower bound at or above the
+        /// far threshold.
+        /// </summary>
         private Vector256<float> Distance(Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, float* corners)
         {
             var gx = (lx - _ox) * _inv; var gy = (ly - _oy) * _inv; var gz = (lz - _oz) * _inv;
-            var rawX = gx; var rawY = gy; var rawZ = gz;
-            var inside = Cells(ref gx, ref gy, ref gz, out var ix, out var iy, out var iz, out var fx, out var fy, out var fz);
-            if (inside == Vector256<float>.Zero) return Outside(rawX, rawY, rawZ);
+            var inside = Inside(gx, gy, gz);
+            bool allInside = inside == Vector256<float>.AllBitsSet;
+            var beyond = Vector256<float>.Zero;
+            if (!allInside)
+            {
+                // Outside lanes move to the grid's nearest point; beyond is the distance to it (maxps and minps, as
+                // the reference's comparisons: a NaN clamps to 0, and its distance stays NaN).
+                var zero = Vector256<float>.Zero;
+                var cx = Avx.Min(Avx.Max(gx, zero), _hx); var cy = Avx.Min(Avx.Max(gy, zero), _hy); var cz = Avx.Min(Avx.Max(gz, zero), _hz);
+                var ex = gx - cx; var ey = gy - cy; var ez = gz - cz;
+                beyond = Vector256.Sqrt(ex * ex + ey * ey + ez * ez) * _cell;
+                gx = cx; gy = cy; gz = cz;
+            }
+            var ix = Avx.ConvertToVector256Int32WithTruncation(gx); var iy = Avx.ConvertToVector256Int32WithTruncation(gy); var iz = Avx.ConvertToVector256Int32WithTruncation(gz);
+            // A point on the top face lies in the last cell at fraction 1.
+            if (!allInside) { ix = Avx2.Min(ix, _lastX); iy = Avx2.Min(iy, _lastY); iz = Avx2.Min(iz, _lastZ); }
+            var fx = gx - Avx.ConvertToVector256Single(ix); var fy = gy - Avx.ConvertToVector256Single(iy); var fz = gz - Avx.ConvertToVector256Single(iz);
             var bound = Brick(ix, iy, iz);
-            if (inside != Vector256<float>.AllBitsSet) bound = Vector256.ConditionalSelect(inside, bound, Outside(rawX, rawY, rawZ));
-            var exact = inside & Vector256.LessThan(bound, _far);
+            if (!allInside) bound += beyond;
+            var exact = Vector256.LessThan(bound, _far);
             if (exact == Vector256<float>.Zero) return bound;
             Corners(ix + _nx * iy + _nxy * iz, exact, corners, out var d000, out var d100, out var d010, out var d110, out var d001, out var d101, out var d011, out var d111);
             var x00 = d000 + fx * (d100 - d000); var x10 = d010 + fx * (d110 - d010);
             var x01 = d001 + fx * (d101 - d001); var x11 = d011 + fx * (d111 - d011);
             var y0 = x00 + fy * (x10 - x00); var y1 = x01 + fy * (x11 - x01);
-            return Vector256.ConditionalSelect(exact, y0 + fz * (y1 - y0), bound);
+            var value = y0 + fz * (y1 - y0);
+            if (!allInside) value = Vector256.ConditionalSelect(inside, value, value + beyond);
+            return Vector256.ConditionalSelect(exact, value, bound);
         }
 
         /// <summary>

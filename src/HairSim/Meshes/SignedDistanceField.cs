@@ -274,17 +274,37 @@ public sealed class SignedDistanceField
 
     /// <summary>
     /// Signed distance at p (metres; negative inside), trilinear between cells. Outside the grid (which holds the whole
-    /// surface at least the band inside its boundary) the band plus the distance to the grid: a lower bound of the
-    /// distance to the surface (the way from p to the surface crosses the boundary, then the band), so hair hanging
-    /// below a head is known to be far from it as soon as it leaves the grid.
+    /// surface at least the band inside its boundary) the field at the grid's nearest point plus the distance to it:
+    /// continuous across the boundary, and changing by at most √3 × a move anywhere, as the trilinear field does inside
+    /// (the collision kernel's records rely on that), so hair hanging below a head is known to be far from it.
     /// </summary>
     public float Distance(Vector3 p) => DistanceAt(p.X, p.Y, p.Z);
 
-    /// <summary>The value outside the grid, from grid coordinates (see <see cref="Distance(Vector3)"/>).</summary>
+    /// <summary>
+    /// The value outside the grid, from grid coordinates (see <see cref="Distance(Vector3)"/>): the trilinear field at
+    /// the nearest grid point (a point on the top face is its last cell at fraction 1) plus the distance to it. Its
+    /// slope across a face is 1 and along it at most √2, so at most √3 in all. A NaN coordinate gives NaN.
+    /// </summary>
     private float Outside(float gx, float gy, float gz)
     {
-        float dx = MathF.Max(MathF.Max(-gx, gx - _hx), 0f), dy = MathF.Max(MathF.Max(-gy, gy - _hy), 0f), dz = MathF.Max(MathF.Max(-gz, gz - _hz), 0f);
-        return _band + MathF.Sqrt(dx * dx + dy * dy + dz * dz) * CellSize;
+        // Written as the kernel's maxps/minps: a NaN coordinate clamps to 0 and the distance to the grid stays NaN.
+        float cx = gx > 0f ? gx : 0f, cy = gy > 0f ? gy : 0f, cz = gz > 0f ? gz : 0f;
+        cx = cx < _hx ? cx : _hx; cy = cy < _hy ? cy : _hy; cz = cz < _hz ? cz : _hz;
+        float ex = gx - cx, ey = gy - cy, ez = gz - cz;
+        float beyond = MathF.Sqrt(ex * ex + ey * ey + ez * ez) * CellSize;
+        int x = Math.Min((int)cx, Nx - 2), y = Math.Min((int)cy, Ny - 2), z = Math.Min((int)cz, Nz - 2);
+        return Trilinear(x, y, z, cx - x, cy - y, cz - z) + beyond;
+    }
+
+    /// <summary>The trilinear field in cell (x, y, z) at fractions (fx, fy, fz), in the kernel's order of operations.</summary>
+    private float Trilinear(int x, int y, int z, float fx, float fy, float fz)
+    {
+        int i = x + Nx * y + Nx * Ny * z, sy = Nx, sz = Nx * Ny;
+        var d = _d;
+        float x00 = d[i] + fx * (d[i + 1] - d[i]), x10 = d[i + sy] + fx * (d[i + sy + 1] - d[i + sy]);
+        float x01 = d[i + sz] + fx * (d[i + sz + 1] - d[i + sz]), x11 = d[i + sz + sy] + fx * (d[i + sz + sy + 1] - d[i + sz + sy]);
+        float y0 = x00 + fy * (x10 - x00), y1 = x01 + fy * (x11 - x01);
+        return y0 + fz * (y1 - y0);
     }
 
     /// <summary>
@@ -296,13 +316,7 @@ public sealed class SignedDistanceField
         float gx = (px - Origin.X) * InvCell, gy = (py - Origin.Y) * InvCell, gz = (pz - Origin.Z) * InvCell;
         if (!(gx >= 0f && gy >= 0f && gz >= 0f && gx < _hx && gy < _hy && gz < _hz)) return Outside(gx, gy, gz);
         int x = (int)gx, y = (int)gy, z = (int)gz;
-        float fx = gx - x, fy = gy - y, fz = gz - z;
-        int i = x + Nx * y + Nx * Ny * z, sy = Nx, sz = Nx * Ny;
-        var d = _d;
-        float x00 = d[i] + fx * (d[i + 1] - d[i]), x10 = d[i + sy] + fx * (d[i + sy + 1] - d[i + sy]);
-        float x01 = d[i + sz] + fx * (d[i + sz + 1] - d[i + sz]), x11 = d[i + sz + sy] + fx * (d[i + sz + sy + 1] - d[i + sz + sy]);
-        float y0 = x00 + fy * (x10 - x00), y1 = x01 + fy * (x11 - x01);
-        return y0 + fz * (y1 - y0);
+        return Trilinear(x, y, z, gx - x, gy - y, gz - z);
     }
 
     /// <summary>Signed distance and its gradient (not normalised) at p; outside the grid, <see cref="Distance(Vector3)"/>'s value and a zero gradient.</summary>
@@ -320,7 +334,7 @@ public sealed class SignedDistanceField
         if (!(gx >= 0f && gy >= 0f && gz >= 0f && gx < _hx && gy < _hy && gz < _hz))
         {
             gradX = gradY = gradZ = 0f;
-            return Outside(gx, gy, gz);   // outside the grid: farther than the band from the surface
+            return Outside(gx, gy, gz);   // outside the grid: never pushed
         }
         int x = (int)gx, y = (int)gy, z = (int)gz;
         float fx = gx - x, fy = gy - y, fz = gz - z;

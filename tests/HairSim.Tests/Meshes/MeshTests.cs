@@ -34,17 +34,53 @@ public sealed class MeshTests
             Assert.True(Vector3.Dot(Vector3.Normalize(g), dir) > 0.98f, $"gradient {g} at {p}");
         }
         Assert.InRange(sdf.Distance(Vector3.Zero), -1.1f * r, -0.9f * r);   // deep inside: the chamfer continuation
-        // Outside the grid: the band plus the distance to the grid, a lower bound of the true distance, and exact along
-        // an axis (the grid ends 4 cells beyond the sphere: the pad, of which the band is 3).
+        // Outside the grid: the field at the grid's nearest point plus the distance to it. Along an axis that is the
+        // distance to the sphere (the grid ends 4 cells beyond it: the pad, of which the band is 3, then the chamfer).
         float gridEnd = sdf.Origin.X + (sdf.Nx - 1) * cell;
+        float atEnd = sdf.Distance(new Vector3(gridEnd, 0, 0));
         foreach (float x in new[] { gridEnd + 0.001f, gridEnd + 0.05f, 0.5f })
         {
             float d = sdf.Distance(new Vector3(x, 0, 0));
-            Assert.Equal(sdf.Band + (x - gridEnd), d, 1e-5f);
-            Assert.True(d <= x - r, $"{d} above the true distance {x - r} at x = {x}");
+            Assert.Equal(atEnd + (x - gridEnd), d, 1e-5f);
+            Assert.InRange(d - (x - r), -tolerance, tolerance);
         }
+        // Off a corner it is farther than the band, so hair there is never pushed.
         var corner = new Vector3(gridEnd + 0.01f, gridEnd + 0.01f, 0);
-        Assert.True(sdf.Distance(corner) <= corner.Length() - r && sdf.Distance(corner) > sdf.Band);
+        Assert.True(sdf.Distance(corner) > sdf.Band);
+    }
+
+    [Fact]
+    public void OutsideTheGridTheFieldGoesOnAsSteeplyAsInsideAtMost()
+    {
+        // The collision kernel's records rely on this: the field changes by at most √3 × a move, anywhere. Pairs of
+        // points a few cells apart around the grid's boundary, many crossing it, and pairs a hair's breadth across it.
+        var mesh = TriangleMesh.Ellipsoid(Vector3.Zero, new Vector3(0.08f, 0.1f, 0.09f), 32, 64);
+        var sdf = SignedDistanceField.Bake(mesh, 0.004f);
+        var lo = sdf.Origin;
+        var hi = sdf.Origin + new Vector3(sdf.Nx - 1, sdf.Ny - 1, sdf.Nz - 1) * sdf.CellSize;
+        var rng = new Random(27);
+        int crossing = 0;
+        for (int n = 0; n < 50_000; n++)
+        {
+            // A point within 3 cells of a random face of the grid, and a step of up to 3 cells from it.
+            var p = lo + (hi - lo) * new Vector3(rng.NextSingle(), rng.NextSingle(), rng.NextSingle());
+            int axis = rng.Next(3);
+            float edge = rng.Next(2) == 0 ? lo[axis] : hi[axis];
+            p[axis] = edge + (rng.NextSingle() * 2 - 1) * 3 * sdf.CellSize;
+            var step = new Vector3(rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f) * 6 * sdf.CellSize;
+            if (n % 4 == 0) step *= 1e-4f;
+            var q = p + step;
+            if (Inside(sdf, p) != Inside(sdf, q)) crossing++;
+            float change = MathF.Abs(sdf.Distance(p) - sdf.Distance(q));
+            Assert.True(change <= MathF.Sqrt(3f) * step.Length() * 1.0001f + 1e-6f, $"{change} between {p} and {q}, {step.Length()} apart");
+        }
+        Assert.True(crossing > 5_000, $"{crossing} pairs crossed the boundary");
+    }
+
+    private static bool Inside(SignedDistanceField sdf, Vector3 p)
+    {
+        var g = (p - sdf.Origin) / sdf.CellSize;
+        return g.X >= 0 && g.Y >= 0 && g.Z >= 0 && g.X < sdf.Nx - 1 && g.Y < sdf.Ny - 1 && g.Z < sdf.Nz - 1;
     }
 
     [Fact]
