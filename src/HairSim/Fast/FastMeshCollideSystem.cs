@@ -1,3 +1,4 @@
+using System.Numerics;
 using System.Diagnostics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
@@ -18,7 +19,9 @@ namespace HairSim.Fast;
 /// slack): neither pushed nor starting a midpoint test; a midpoint whose brick lies beyond the margin is not pushed;</item>
 /// <item>each 8-lane row keeps a record of where it was last measured and what (carried from frame to frame): a row
 /// whose lanes all stayed within their clearance of it (the distance beyond that far threshold, over √3) is settled
-/// without a sample, and so is a row's midpoint test when every tested midpoint stayed within its clearance;</item>
+/// without a sample, and so is a row's midpoint test when every tested midpoint stayed within its clearance (each
+/// substep first reads every row's record 16 lanes at a time, <see cref="Kernel.Classify"/>, and the walk then visits
+/// only the rows where something happens);</item>
 /// <item>a row nearer than that whose lanes all stay above the margin by √3 × their move is settled with bounds (record
 /// ± √3 × move): not pushed, and measured only if a midpoint decision falls between its bounds.</item>
 /// </list>
@@ -67,8 +70,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         return true;
     }
 
-    // Clearances carried from frame to frame, per mesh collider: for each particle slot, its record (each 8 lanes of a
-    // chunk row as the thread memo keeps them), in the chunk's row layout at 4 × its first particle. A record is a fact
+    // Clearances carried from frame to frame, per mesh collider: for each particle slot, its record (laid out as the
+    // thread memo keeps them, RecordAt), in the chunk's row layout at 4 × its first particle. A record is a fact
     // about the field, true whichever particle reads it (the field is at least d at this head-space point, and exactly d
     // below the far distance stamped with it), so it holds across frames, edits, margins and other chunk boundaries, and
     // is dropped only when the field changes. With them a chunk's first substep settles rows as its later substeps do,
@@ -76,6 +79,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     // substep on: carried too (2026-11-27 again), the doubled block made frames slower.
     private const int CarryFloats = ClearFloats / 8; // per particle: its record's x, y, z and distance
     private float[]?[] _carry = [];
+    // Per mesh: the first index of _carry[m] on a 64-byte line (the array is pinned), where its records start.
+    private int[] _carryBase = [];
     // Per mesh, for each 8-lane row of records (at its first particle / 8): the far distance of the chunk that wrote
     // it, below which the record's distances are exact (above it, bounds). −∞: none exact.
     private float[]?[] _carryFar = [];
@@ -86,15 +91,15 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private int _carryEdit = -1;
     private bool _carryTeleported;
 
-    private void PrepareCarriedClearances(bool teleported)
+    private unsafe void PrepareCarriedClearances(bool teleported)
     {
         var w = _scene?.World;
         int n = _colliders.Length;
         if (w == null || n == 0) return;
         bool relaid = w.EditStamp != _carryEdit || teleported || _carryTeleported;
         _carryEdit = w.EditStamp; _carryTeleported = teleported;
-        if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryFar, n); Array.Resize(ref _carryField, n); }
-        long size = (long)CarryFloats * w.ParticleCount;
+        if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryFar, n); Array.Resize(ref _carryField, n); Array.Resize(ref _carryBase, n); }
+        long size = (long)CarryFloats * w.ParticleCount + 16;
         for (int m = 0; m < n; m++)
         {
             var mc = _colliders[m];
@@ -103,6 +108,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             if (fresh)
             {
                 _carry[m] = carry = GC.AllocateUninitializedArray<float>((int)size, pinned: true);
+                _carryBase[m] = (int)((16 - (((nint)Unsafe.AsPointer(ref MemoryMarshal.GetArrayDataReference(carry)) >> 2) & 15)) & 15);
                 _carryFar[m] = GC.AllocateUninitializedArray<float>(w.ParticleCount / 8 + 2, pinned: true);
             }
             if (fresh || relaid || !ReferenceEquals(_carryField[m], mc.Field))
@@ -125,8 +131,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     float[]? IStrandChunkSystem.ChunkBlock(int s0, int first, int cells, out int offset, out int fields)
     {
         // The first mesh's carried clearances, fetched with the chunk's fields.
-        offset = CarryFloats * first; fields = CarryFloats;
         var carry = _carry.Length > 0 ? _carry[0] : null;
+        offset = (carry != null ? _carryBase[0] : 0) + CarryFloats * first; fields = CarryFloats;
         return carry != null && offset + (long)fields * cells <= carry.Length ? carry : null;
     }
 
@@ -140,6 +146,9 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         float maxRest = ChunkMaxRest(chunk);
         ref int live = ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(scene.World.StrandParticleCount), chunk.FirstStrand);
         var rows = new Rows(chunk);
+        // Each row's lower bound and move from its record (Kernel.Classify), 16 lanes per row.
+        Vector512<float>* lower = stackalloc Vector512<float>[StrandChunk.MaxRows];
+        Vector512<float>* move = stackalloc Vector512<float>[StrandChunk.MaxRows];
         // One mesh after the other, as the reference does over its strands.
         for (int m = 0; m < colliders.Length; m++)
         {
@@ -153,11 +162,11 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 float* clear = memo + 2 * MemoFloats, midClear = memo + 2 * MemoFloats + ClearanceFloats;
                 float* stamps = memo + 2 * MemoFloats + 2 * ClearanceFloats;
                 var carry = carried ? _carry[m] : null;
-                if (carry != null && (long)CarryFloats * (chunk.Firsts[0] + L * chunk.Height) <= carry.Length)
+                if (carry != null && _carryBase[m] + (long)CarryFloats * (chunk.Firsts[0] + L * chunk.Height) <= carry.Length)
                 {
                     // Pinned: its records are read and written in place. Row o's stamp is at (first + o) / 8, which is
                     // first / 8 + o / 8 (o is a multiple of 8): no two rows share one.
-                    clear = (float*)Unsafe.AsPointer(ref carry[CarryFloats * chunk.Firsts[0]]);
+                    clear = (float*)Unsafe.AsPointer(ref carry[_carryBase[m] + CarryFloats * chunk.Firsts[0]]);
                     stamps = (float*)Unsafe.AsPointer(ref _carryFar[m]![chunk.Firsts[0] >> 3]);
                 }
                 else
@@ -168,8 +177,14 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 }
                 var k = new Kernel(mc, data, bricks, maxRest, ctx.Settings.ContactSlide, in pose, memo, memo + MemoFloats, clear, midClear, stamps,
                     reuse: substep > 0 || carry != null, reuseMidpoints: substep > 0);
-                for (int g = 0; g < L; g += 8)
-                    k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g));
+                // What the records settle, 16 lanes at a time, then each 8-lane column's walk over the rows where
+                // something happens.
+                for (int g = 0; g < L; g += 16)
+                {
+                    k.Classify(in rows, g, chunk.Height, lower, move, out ulong farA, out ulong boundedA, out ulong farB, out ulong boundedB);
+                    k.Column(in rows, g, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)g), (Vector256<float>*)lower, (Vector256<float>*)move, farA, boundedA);
+                    k.Column(in rows, g + 8, chunk.Height, Vector256.LoadUnsafe(ref live, (nuint)(g + 8)), (Vector256<float>*)lower + 1, (Vector256<float>*)move + 1, farB, boundedB);
+                }
             }
         }
         return true;
@@ -200,9 +215,18 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private const int MemoFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8 * CornerFloats;
     /// <summary>
     /// Floats of one 8-lane row's clearance record: head-space x, y, z where the row was last measured, and for a
-    /// particle row the distance (a lower bound) measured there, for a midpoint row the squared distance it may move.
+    /// particle row the distance (a lower bound) measured there (laid out 16 lanes to a field, <see cref="RecordAt"/>),
+    /// for a midpoint row the squared distance it may move (8 lanes to a field).
     /// </summary>
     private const int ClearFloats = 32;
+    /// <summary>
+    /// Where row o's particle records are (o = 32k + g): each 16 lanes of a row keep x, y, z and d as 16 floats each,
+    /// so <see cref="Kernel.Classify"/> reads a field of 16 lanes with one load; an 8-lane column's record lies at
+    /// g mod 16 in them.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static nuint RecordAt(nuint o) => (o & ~(nuint)15) * 4 + (o & 15);
+    private const int RecordY = 16, RecordZ = 32, RecordD = 48;
     /// <summary>Floats of one mesh's memos per thread: particle and midpoint corners, then the rows' clearances.</summary>
     private const int ClearanceFloats = StrandChunk.MaxRows * StrandChunk.Lanes / 8 * ClearFloats;
     /// <summary>Floats of one mesh's row stamps per thread: one per 8-lane row, the far distance its record was written with.</summary>
@@ -236,15 +260,15 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 memo._floats = floats;
                 memo._fields = new SignedDistanceField?[mesh + 1];
             }
-            // 32-byte aligned (aligned loads and stores).
-            float* base0 = (float*)(((nint)Unsafe.AsPointer(ref MemoryMarshal.GetArrayDataReference(memo._floats)) + 31) & ~(nint)31);
+            // 64-byte aligned (16-lane loads of records do not split lines).
+            float* base0 = (float*)(((nint)Unsafe.AsPointer(ref MemoryMarshal.GetArrayDataReference(memo._floats)) + 63) & ~(nint)63);
             float* slot = base0 + mesh * SlotFloats;
             if (!ReferenceEquals(memo._fields[mesh], field))
             {
                 // No cell has index −1: every lookup misses until a gather fills the row.
                 for (int r = 0; r < 2 * MemoFloats; r += CornerFloats) Vector256.Create(-1).AsSingle().Store(slot + r);
                 // Clearances are lower bounds of this field: none carried over from another (−1: never within).
-                for (int r = 2 * MemoFloats; r < 2 * MemoFloats + 2 * ClearanceFloats; r += ClearFloats) Vector256.Create(-1f).Store(slot + r + 24);
+                new Span<float>(slot + 2 * MemoFloats, 2 * ClearanceFloats).Fill(-1f);
                 memo._fields[mesh] = field;
             }
             return slot;
@@ -308,28 +332,44 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             _lastX = Vector256.Create(f.Nx - 2); _lastY = Vector256.Create(f.Ny - 2); _lastZ = Vector256.Create(f.Nz - 2);
         }
 
-        /// <summary>Lanes g … g + 7 of the chunk, root to tip, as <see cref="MeshCollideSystem.Collide"/> walks each strand.</summary>
-        public void Column(in Rows r, int g, int height, Vector256<int> live)
+        /// <summary>
+        /// Lanes g … g + 7 of the chunk, root to tip, as <see cref="MeshCollideSystem.Collide"/> walks each strand, with
+        /// what <see cref="Classify"/> found: which rows are settled at the far distance and which with bounds, and a
+        /// bounded row k's lower bound and move at <paramref name="lower"/>[2k] and <paramref name="move"/>[2k].
+        /// </summary>
+        public void Column(in Rows r, int g, int height, Vector256<int> live, Vector256<float>* lower, Vector256<float>* move, ulong far, ulong bounded)
         {
-            // Each row's distance as bounds: lo = hi where exact; a row settled by its record has lo below and hi above
-            // the exact value in its "loose" lanes, measured only if a decision needs it (see PushOutTracked).
-            Vector256<float> prevLo = default, prevHi = default, prevLoose = default;
-            nuint prevO = 0;
-            bool prevFar = false;
+            const int L = StrandChunk.Lanes;
             // Rows pinned in every lane (the roots) are never moved, and neither is a segment between two of them:
             // such a row's distance is needed only as the previous one of a segment that can move. Skipping the rest
             // changes no decision and no value (the roots are always near the scalp, so these were exact samples).
-            bool pinnedBefore = false, pinned = height > 0 && AllPinned(in r, (nuint)g);
+            ulong pinned = 0;
             for (int k = 0; k < height; k++)
+                pinned |= (AllPinned(in r, (nuint)(k * L + g)) ? 1UL : 0UL) << k;
+            ulong rows = height == 64 ? ~0UL : (1UL << height) - 1;
+            ulong skip = pinned & (pinned >> 1);
+            // Rows to measure (neither far nor bounded), and segments to decide: both ends short of the far distance
+            // (a row there starts no midpoint test, nor ends one: the far distance less half any segment of the chunk
+            // is above the threshold), and not between two pinned rows.
+            ulong measure = rows & ~(far | bounded | skip);
+            ulong near = rows & ~far;
+            ulong segments = near & (near << 1) & ~(pinned & (pinned << 1)) & ~skip;
+            // Each row's distance as bounds: lo = hi where exact; a row settled by its record has lo below and hi above
+            // the exact value in its "loose" lanes, measured only if a decision needs it.
+            Vector256<float> prevLo = default, prevHi = default, prevLoose = default;
+            int last = -2;
+            for (ulong active = measure | segments; active != 0; active &= active - 1)
             {
-                nuint o = (nuint)(k * StrandChunk.Lanes + g);
-                bool pinnedNext = k + 1 < height && AllPinned(in r, o + StrandChunk.Lanes);
-                if (pinned && pinnedNext) { pinnedBefore = true; pinned = true; continue; }
-                var lo = PushOutTracked(r, o, out var hi, out var loose, out bool far);
-                // A row at the far distance starts no midpoint test, nor ends one (the far distance less half any
-                // segment of the chunk is above the threshold): most rows of hanging hair end here.
-                if (k > 0 && !(pinned && pinnedBefore) && !far && !prevFar)
+                int k = BitOperations.TrailingZeroCount(active);
+                nuint o = (nuint)(k * L + g);
+                Vector256<float> lo, hi, loose;
+                if ((measure >> k & 1) != 0) { lo = PushOutMeasured(in r, o, out hi); loose = Vector256<float>.Zero; }
+                else { lo = lower[2 * k]; hi = UpperBound(o, move[2 * k]); loose = Vector256<float>.AllBitsSet; }
+                if ((segments >> k & 1) != 0)
                 {
+                    nuint prevO = o - L;
+                    // A previous row the walk did not visit was settled with bounds (not far, not pinned, not measured).
+                    if (last != k - 1) { prevLo = lower[2 * k - 2]; prevHi = UpperBound(prevO, move[2 * k - 2]); prevLoose = Vector256<float>.AllBitsSet; }
                     var alive = Vector256.GreaterThan(live, Vector256.Create(k)).AsSingle();
                     var half = Vector256.Create(0.5f) * Vector256.LoadUnsafe(ref r.Rest, o);
                     // The reference's test is monotone in both distances: where the lower bounds say no test, or the
@@ -348,14 +388,93 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                     }
                     if (test != Vector256<float>.Zero)
                     {
-                        lo = Midpoint(test, r, o - StrandChunk.Lanes, o, lo, out var hit);
+                        lo = Midpoint(test, r, prevO, o, lo, out var hit);
                         hi = Vector256.ConditionalSelect(hit, lo, hi);
                         loose = Vector256.AndNot(loose, hit);
                     }
                 }
-                prevLo = lo; prevHi = hi; prevLoose = loose; prevO = o; prevFar = far;
-                pinnedBefore = pinned; pinned = pinnedNext;
+                prevLo = lo; prevHi = hi; prevLoose = loose; last = k;
             }
+        }
+
+        /// <summary>
+        /// What each row's record settles, for lanes g … g + 15 (two columns: A is g … g + 7, B the next 8), one row at a
+        /// time without a branch, so the walk visits only rows where something happens. A row's place and record are
+        /// read before the walk: the walk moves a row only after reading it as its present row, so the bits are the
+        /// same. <paramref name="farA"/>, <paramref name="farB"/>: rows every lane of which is still within its clearance
+        /// of its last measure (the distance beyond the far distance, over √3: the field changes by at most √3 × a
+        /// move), so neither pushed nor starting a midpoint test; <paramref name="boundedA"/>, <paramref name="boundedB"/>:
+        /// the other rows whose lanes all stay above the margin by √3 × their move (not pushed; the exact value lies
+        /// within the record ± √3 × the move, whose lower end goes to <paramref name="lower"/> and the move to
+        /// <paramref name="move"/>). Nothing is settled where no record is read (a chunk's first substep without
+        /// carried records).
+        /// </summary>
+        public void Classify(in Rows r, int g, int height, Vector512<float>* lower, Vector512<float>* move, out ulong farA, out ulong boundedA, out ulong farB, out ulong boundedB)
+        {
+            farA = boundedA = farB = boundedB = 0;
+            if (!_reuse) return;
+            // The kernel's constants in locals (registers): the stores below go through pointers, which could alias
+            // the kernel's fields, so the JIT would read each field again on every row.
+            var tx = Vector512.Create(_tx.ToScalar()); var ty = Vector512.Create(_ty.ToScalar()); var tz = Vector512.Create(_tz.ToScalar());
+            var l00 = Vector512.Create(_l00.ToScalar()); var l01 = Vector512.Create(_l01.ToScalar()); var l02 = Vector512.Create(_l02.ToScalar());
+            var l10 = Vector512.Create(_l10.ToScalar()); var l11 = Vector512.Create(_l11.ToScalar()); var l12 = Vector512.Create(_l12.ToScalar());
+            var l20 = Vector512.Create(_l20.ToScalar()); var l21 = Vector512.Create(_l21.ToScalar()); var l22 = Vector512.Create(_l22.ToScalar());
+            var farDistance = Vector512.Create(_farScalar); var margin = Vector512.Create(_margin.ToScalar());
+            var share = Vector512.Create(ClearanceShare); var inverseShare = Vector512.Create(1f / ClearanceShare);
+            float* records = _clearance;
+            ulong fa = 0, ba = 0, fb = 0, bb = 0;
+            ref float rx = ref r.X, ry = ref r.Y, rz = ref r.Z;
+            for (int k = 0; k < height; k++)
+            {
+                nuint o = (nuint)(k * StrandChunk.Lanes + g);
+                var x = Vector512.LoadUnsafe(ref rx, o) - tx; var y = Vector512.LoadUnsafe(ref ry, o) - ty; var z = Vector512.LoadUnsafe(ref rz, o) - tz;
+                var lx = l00 * x + l01 * y + l02 * z; var ly = l10 * x + l11 * y + l12 * z; var lz = l20 * x + l21 * y + l22 * z;
+                float* clear = records + RecordAt(o);
+                var mx = lx - Vector512.Load(clear); var my = ly - Vector512.Load(clear + RecordY); var mz = lz - Vector512.Load(clear + RecordZ);
+                var m2 = mx * mx + my * my + mz * mz;
+                var recorded = Vector512.Load(clear + RecordD);
+                // maxps: squared below, so ±0 alike.
+                var c = Avx512F.Max(recorded - farDistance, Vector512<float>.Zero) * share;
+                var m = Vector512.Sqrt(m2) * inverseShare;
+                var lw = recorded - m;
+                lower[k] = lw; move[k] = m;
+                ulong isFar = Vector512.ExtractMostSignificantBits(Vector512.LessThan(m2, c * c));
+                ulong isAbove = Vector512.ExtractMostSignificantBits(Vector512.GreaterThanOrEqual(lw, margin)) & ~isFar;
+                // All 8 lanes of a column: (mask + 1) >> 8 is 1 for 0xFF, else 0.
+                fa |= ((isFar & 0xFF) + 1 >> 8) << k; fb |= ((isFar >> 8) + 1 >> 8) << k;
+                ba |= ((isAbove & 0xFF) + 1 >> 8) << k; bb |= ((isAbove >> 8) + 1 >> 8) << k;
+            }
+            farA = fa; boundedA = ba; farB = fb; boundedB = bb;
+            CheckSettled(in r, g, height, (Vector256<float>*)lower, (Vector256<float>*)move, farA, boundedA);
+            CheckSettled(in r, g + 8, height, (Vector256<float>*)lower + 1, (Vector256<float>*)move + 1, farB, boundedB);
+        }
+
+        /// <summary>Debug builds: every row of column g that its record settled, checked against the reference's distance (<see cref="CheckBounds"/>).</summary>
+        [Conditional("DEBUG")]
+        private void CheckSettled(in Rows r, int g, int height, Vector256<float>* lower, Vector256<float>* move, ulong far, ulong bounded)
+        {
+            for (int k = 0; k < height; k++)
+            {
+                if (((far | bounded) >> k & 1) == 0) continue;
+                nuint o = (nuint)(k * StrandChunk.Lanes + g);
+                var x = Vector256.LoadUnsafe(ref r.X, o); var y = Vector256.LoadUnsafe(ref r.Y, o); var z = Vector256.LoadUnsafe(ref r.Z, o);
+                ToLocal(x - _tx, y - _ty, z - _tz, out var lx, out var ly, out var lz);
+                if ((far >> k & 1) != 0) CheckBounds(lx, ly, lz, _far, Vector256.Create(float.PositiveInfinity));
+                else { Counts.Add(ref Counts.BoundedRows); CheckBounds(lx, ly, lz, lower[2 * k], UpperBound(o, move[2 * k])); }
+            }
+        }
+
+        /// <summary>
+        /// The upper bound of row o's distance its record gives with the move <paramref name="m"/> (√3 × the move, from
+        /// <see cref="Classify"/>): the record plus the move where the record is exact (below the far distance of the
+        /// visit that wrote it), else none.
+        /// </summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector256<float> UpperBound(nuint o, Vector256<float> m)
+        {
+            var recorded = Vector256.Load(_clearance + RecordAt(o) + RecordD);
+            var exact = Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8]));
+            return Vector256.ConditionalSelect(exact, recorded + m, Vector256.Create(float.PositiveInfinity));
         }
 
         /// <summary>
@@ -402,8 +521,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         private void Record(nuint o, Vector256<float> lx, Vector256<float> ly, Vector256<float> lz, Vector256<float> d)
         {
-            float* clear = _clearance + o * ClearFloats / 8;
-            lx.Store(clear); ly.Store(clear + 8); lz.Store(clear + 16); d.Store(clear + 24);
+            float* clear = _clearance + RecordAt(o);
+            lx.Store(clear); ly.Store(clear + RecordY); lz.Store(clear + RecordZ); d.Store(clear + RecordD);
             _stamps[o / 8] = _farScalar;
         }
 
@@ -428,51 +547,15 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             wz = _w20 * x + _w21 * y + _w22 * z;
         }
 
-        /// <summary>
-        /// Row o's particles pushed out to the margin as <see cref="PushOut"/> does, with what the records settle: returns
-        /// a lower bound of each lane's distance, and in <paramref name="hi"/> an upper bound (equal where exact). A row
-        /// every lane of which is still within its clearance of its last measure is settled at the far distance
-        /// (<paramref name="far"/>: it can neither be pushed nor start a midpoint test). A row whose lanes all stay above
-        /// the margin by √3 × their move is settled with bounds (record ± √3 × move) in every lane (<paramref name="loose"/>):
-        /// not pushed, and measured again only if a midpoint decision needs the exact value (<see cref="Column"/>).
-        /// </summary>
-        private Vector256<float> PushOutTracked(in Rows r, nuint o, out Vector256<float> hi, out Vector256<float> loose, out bool far)
+        /// <summary>Row o measured, recorded and pushed out to the margin as <see cref="PushOut"/> does: returns the distances, and in <paramref name="hi"/> their upper bounds.</summary>
+        private Vector256<float> PushOutMeasured(in Rows r, nuint o, out Vector256<float> hi)
         {
-            far = false;
             var x = Vector256.LoadUnsafe(ref r.X, o); var y = Vector256.LoadUnsafe(ref r.Y, o); var z = Vector256.LoadUnsafe(ref r.Z, o);
             ToLocal(x - _tx, y - _ty, z - _tz, out var lx, out var ly, out var lz);
-            if (_reuse)
-            {
-                // The field moves by at most √3 × the move: a record keeps the distance, not the clearance, so it holds
-                // for whichever chunk's far distance reads it.
-                float* clear = _clearance + o * ClearFloats / 8;
-                var mx = lx - Vector256.Load(clear); var my = ly - Vector256.Load(clear + 8); var mz = lz - Vector256.Load(clear + 16);
-                var m2 = mx * mx + my * my + mz * mz;
-                var recorded = Vector256.Load(clear + 24);
-                var c = Avx.Max(recorded - _far, Vector256<float>.Zero) * Vector256.Create(ClearanceShare);
-                if (Vector256.LessThanAll(m2, c * c))
-                {
-                    CheckBounds(lx, ly, lz, _far, Vector256.Create(float.PositiveInfinity));
-                    hi = Vector256.Create(float.PositiveInfinity); loose = Vector256<float>.Zero; far = true; return _far;
-                }
-                // Every lane above the margin by its move: not pushed; the exact value lies within ± √3 × the move.
-                // An upper bound only where the record is exact (below the far distance of the visit that wrote it).
-                var move = Vector256.Sqrt(m2) * Vector256.Create(1f / ClearanceShare);
-                var lower = recorded - move;
-                if (Vector256.GreaterThanOrEqualAll(lower, _margin))
-                {
-                    var exact = Vector256.LessThan(recorded, Vector256.Create(_stamps[o / 8]));
-                    hi = Vector256.ConditionalSelect(exact, recorded + move, Vector256.Create(float.PositiveInfinity));
-                    loose = Vector256<float>.AllBitsSet;
-                    Counts.Add(ref Counts.BoundedRows);
-                    CheckBounds(lx, ly, lz, lower, hi);
-                    return lower;
-                }
-            }
             var d = Distance(lx, ly, lz, _particleCorners + o * CornerFloats / 8);
             Record(o, lx, ly, lz, d);
             d = Push(Vector256<float>.AllBitsSet, r, o, x, y, z, lx, ly, lz, d);
-            hi = Upper(d); loose = Vector256<float>.Zero;
+            hi = Upper(d);
             return d;
         }
 
