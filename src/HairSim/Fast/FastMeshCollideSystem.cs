@@ -91,7 +91,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     private int _carryEdit = -1;
     private bool _carryTeleported;
 
-    private unsafe void PrepareCarriedClearances(bool teleported)
+    private void PrepareCarriedClearances(bool teleported)
     {
         var w = _scene?.World;
         int n = _colliders.Length;
@@ -99,7 +99,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         bool relaid = w.EditStamp != _carryEdit || teleported || _carryTeleported;
         _carryEdit = w.EditStamp; _carryTeleported = teleported;
         if (_carry.Length != n) { Array.Resize(ref _carry, n); Array.Resize(ref _carryFar, n); Array.Resize(ref _carryField, n); Array.Resize(ref _carryBase, n); }
-        long size = (long)CarryFloats * w.ParticleCount + 16;
+        long size = (long)CarryFloats * w.ParticleCount + StrandScratch.LineFloats;
         for (int m = 0; m < n; m++)
         {
             var mc = _colliders[m];
@@ -108,7 +108,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
             if (fresh)
             {
                 _carry[m] = carry = GC.AllocateUninitializedArray<float>((int)size, pinned: true);
-                _carryBase[m] = (int)((16 - (((nint)Unsafe.AsPointer(ref MemoryMarshal.GetArrayDataReference(carry)) >> 2) & 15)) & 15);
+                _carryBase[m] = StrandScratch.ToLine(ref MemoryMarshal.GetArrayDataReference(carry));
                 _carryFar[m] = GC.AllocateUninitializedArray<float>(w.ParticleCount / 8 + 2, pinned: true);
             }
             if (fresh || relaid || !ReferenceEquals(_carryField[m], mc.Field))
@@ -261,7 +261,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 memo._fields = new SignedDistanceField?[mesh + 1];
             }
             // 64-byte aligned (16-lane loads of records do not split lines).
-            float* base0 = (float*)(((nint)Unsafe.AsPointer(ref MemoryMarshal.GetArrayDataReference(memo._floats)) + 63) & ~(nint)63);
+            ref float first = ref MemoryMarshal.GetArrayDataReference(memo._floats);
+            float* base0 = (float*)Unsafe.AsPointer(ref first) + StrandScratch.ToLine(ref first);
             float* slot = base0 + mesh * SlotFloats;
             if (!ReferenceEquals(memo._fields[mesh], field))
             {

@@ -21,16 +21,20 @@ internal readonly ref struct StrandScratch
     public readonly Span<float> Data;
     public readonly int Stride;
 
-    public unsafe StrandScratch(Span<float> data, int capacity)
+    public StrandScratch(Span<float> data, int capacity)
     {
         // Every field starts on a 64-byte cache line, so no 16-lane load or store of a row splits a line. (A heap
         // buffer the GC later moves only loses the alignment, not the layout.)
-        int skip = (int)((LineFloats - (((nint)Unsafe.AsPointer(ref MemoryMarshal.GetReference(data)) >> 2) & (LineFloats - 1))) & (LineFloats - 1));
-        Data = data.Slice(skip);
+        Data = data.Slice(ToLine(ref MemoryMarshal.GetReference(data)));
         Stride = Lined(capacity + 3 * Vector<float>.Count);
     }
 
-    private const int LineFloats = 16;
+    /// <summary>Floats in a 64-byte cache line.</summary>
+    public const int LineFloats = 16;
+
+    /// <summary>Floats from <paramref name="first"/> to the next start of a 64-byte line (0 … 15): where pinned or stack buffers begin their lined data.</summary>
+    public static unsafe int ToLine(ref float first) =>
+        (int)((LineFloats - (((nint)Unsafe.AsPointer(ref first) >> 2) & (LineFloats - 1))) & (LineFloats - 1));
     private static int Lined(int n) => (n + LineFloats - 1) / LineFloats * LineFloats;
 
     /// <summary>Floats needed for <paramref name="fields"/> slices of <paramref name="capacity"/> elements.</summary>
