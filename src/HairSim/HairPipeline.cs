@@ -282,7 +282,7 @@ public sealed class HairPipeline
             _frameStart[k].Run(_scene, ctx, 0, 0, world.StrandCount);
         if (_substep.Length > 0)
         {
-            _chunkFrame = UsesStrandChunks && _chunks!.BeginFrame(ctx, world.StrandCount);
+            _chunkFrame = UsesStrandChunks && _chunks!.BeginFrame(ctx, world);
             if (_chunkFrame) _chunks!.ResetCounts();
             // Small blocks (~ParticlesPerJob) keep a block's data in L2 across all its substeps and systems.
             long blocks = (world.ParticleCount + ParticlesPerJob - 1) / ParticlesPerJob;

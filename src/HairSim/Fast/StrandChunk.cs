@@ -161,6 +161,12 @@ internal interface IStrandChunkSystem
     bool RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk);
 }
 
+/// <summary>A system's <see cref="IStrandChunkSystem.RunChunk"/>, bound once (see <see cref="StrandChunkRunner"/>).</summary>
+internal delegate bool ChunkStep(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk);
+
+/// <summary>A system's <see cref="IStrandChunkSystem.PrepareChunk"/>, bound once.</summary>
+internal delegate void ChunkPrepare(HairWorld w, int s0, scoped StrandChunk chunk);
+
 /// <summary>
 /// Runs a job's strands through all substeps chunk by chunk: each run of 32 uncut 16-particle strands that every
 /// system accepts is loaded into a <see cref="StrandChunk"/>, stepped, and stored; every other strand (cut, other
@@ -171,6 +177,14 @@ internal sealed class StrandChunkRunner
 {
     private readonly IHairSystem[] _systems;
     private readonly IStrandChunkSystem[] _chunkSystems;
+    // The per-chunk calls, bound to each system's own method once: a call through the interface at a site that sees
+    // several systems went through the runtime's resolve stub every time (1.5–2 % of a one-substep frame). Systems
+    // that keep the interface's empty default of a call are left out of that call's list.
+    private readonly ChunkStep[] _steps;
+    private readonly ChunkPrepare[] _prepares;
+    private readonly Action<int>[] _prefetchState;
+    private readonly IStrandChunkSystem[] _withBlocks;
+    private readonly ChunkConstantRows _constantRows;
     private readonly ChunkFields _needs;
     private readonly bool _takesCut;
     private bool _cutThisFrame;
@@ -192,10 +206,33 @@ internal sealed class StrandChunkRunner
     {
         _systems = systems;
         _chunkSystems = chunkSystems;
+        _steps = new ChunkStep[chunkSystems.Length];
+        var prepares = new List<ChunkPrepare>();
+        var prefetchState = new List<Action<int>>();
+        var withBlocks = new List<IStrandChunkSystem>();
+        for (int k = 0; k < chunkSystems.Length; k++)
+        {
+            var c = chunkSystems[k];
+            _steps[k] = c.RunChunk;
+            if (Implements(c, nameof(IStrandChunkSystem.PrepareChunk))) prepares.Add(c.PrepareChunk);
+            if (Implements(c, nameof(IStrandChunkSystem.PrefetchChunkState))) prefetchState.Add(c.PrefetchChunkState);
+            if (Implements(c, nameof(IStrandChunkSystem.ChunkBlock))) withBlocks.Add(c);
+        }
+        _prepares = [.. prepares]; _prefetchState = [.. prefetchState]; _withBlocks = [.. withBlocks];
         for (int k = 0; k + 1 < chunkSystems.Length; k++)
             if (chunkSystems[k] is FastIntegrateSystem && chunkSystems[k + 1] is FastBendSystem) _integrateAt = k;
         _takesCut = true;
         foreach (var c in chunkSystems) { _needs |= c.ChunkNeeds; _takesCut &= c.TakesCutStrands; }
+        _constantRows = new ChunkConstantRows(_needs);
+    }
+
+    /// <summary>Whether the system's type has its own <paramref name="method"/> of <see cref="IStrandChunkSystem"/> (not the interface's default).</summary>
+    internal static bool Implements(IStrandChunkSystem system, string method)
+    {
+        var map = system.GetType().GetInterfaceMap(typeof(IStrandChunkSystem));
+        for (int i = 0; i < map.InterfaceMethods.Length; i++)
+            if (map.InterfaceMethods[i].Name == method) return map.TargetMethods[i].DeclaringType != typeof(IStrandChunkSystem);
+        throw new ArgumentException($"IStrandChunkSystem has no method {method}.", nameof(method));
     }
 
     /// <summary>Whether cut strands (capacity 16, fewer live particles) go into chunks: every system takes them.</summary>
@@ -226,10 +263,11 @@ internal sealed class StrandChunkRunner
     public (int Stepped, int HandedBack) Counts => (Volatile.Read(ref _stepped), Volatile.Read(ref _handedBack));
 
     /// <summary>Prepares every system's chunk kernel for this frame; false if some system's settings do not take it.</summary>
-    public bool BeginFrame(FrameContext ctx, int strandCount)
+    public bool BeginFrame(FrameContext ctx, HairWorld world)
     {
         // Made on the calling thread (the jobs only read and write their own entries), once per world size.
-        if (_acceptedAt.Length != strandCount) _acceptedAt = new long[strandCount];
+        if (_acceptedAt.Length != world.StrandCount) _acceptedAt = new long[world.StrandCount];
+        _constantRows.Fit(world);
         // A teleport carries the particles past a cut with the head (FastHeadFollowSystem.CarryRigidly), which a
         // chunk, putting them back as they were, would not: cut strands take the ordinary path on those rare frames.
         _cutThisFrame = _takesCut && !ctx.Teleported;
@@ -308,6 +346,8 @@ internal sealed class StrandChunkRunner
     }
 
     /// <summary>One chunk through all substeps; false if a system handed it back to the ordinary path midway.</summary>
+    // Every local is written before it is read (the prefetcher's addresses up to its count): no zeroing of the frame.
+    [SkipLocalsInit]
     private unsafe bool RunChunk(HairScene scene, FrameContext ctx, int s0, scoped StrandScratch tile, int tileRows, ReadOnlySpan<int> firsts, Span<float> pastCuts,
         NonFiniteContainment containment)
     {
@@ -315,29 +355,35 @@ internal sealed class StrandChunkRunner
         int first = firsts[0], height = w.StrandCapacity[s0];
         Load(w.PosX, first, height, tile, StrandChunk.X); Load(w.PosY, first, height, tile, StrandChunk.Y); Load(w.PosZ, first, height, tile, StrandChunk.Z);
         Load(w.VelX, first, height, tile, StrandChunk.VelX); Load(w.VelY, first, height, tile, StrandChunk.VelY); Load(w.VelZ, first, height, tile, StrandChunk.VelZ);
-        Load(w.InvMass, first, height, tile, StrandChunk.InvMass);
+        // Masses and rest data: copied rows kept since the last edit, else transposed from the world and kept.
+        bool kept = _constantRows.Holds(w, s0, first, height);
+        ulong pinned = kept ? _constantRows.CopyTo(s0, first, height, tile) : 0;
+        if (!kept)
+        {
+            foreach (int f in _constantRows.Fields) Load(ConstantSource(w, f), first, height, tile, f);
+            _constantRows.Keep(w, s0, first, height, tile);
+        }
         int cutFrom = _takesCut ? SavePastCuts(w, s0, height, tileRows, tile, pastCuts) : StrandChunk.Rows;
         // Rows past every strand's cut need no sweep: the longest live strand's count.
         int liveRows = cutFrom < height ? MaxLive(w, s0) : height;
-        if ((_needs & ChunkFields.RestLength) != 0) Load(w.RestLength, first, height, tile, StrandChunk.RestLength);
-        if ((_needs & ChunkFields.Shape) != 0)
+        if (!kept)
         {
-            Load(w.ShapePrev, first, height, tile, StrandChunk.ShapePrev); Load(w.ShapeMid, first, height, tile, StrandChunk.ShapeMid);
-            Load(w.ShapeNext, first, height, tile, StrandChunk.ShapeNext);
+            // From the masses as the cut masks leave them (which change only with an edit too).
+            pinned = (_needs & ChunkFields.PinRest) != 0 ? PinnedRows(tile, height) : 0;
+            _constantRows.KeepPinned(w, s0, pinned);
         }
-        ulong pinned = (_needs & ChunkFields.PinRest) != 0 ? PinnedRows(tile, height) : 0;
         // The next chunk's data is fetched from memory while this one computes: a share per row of a system that
         // sweeps rows, else a slice after each system.
-        var prefetch = new Prefetcher(w, s0 + StrandChunk.Lanes, first + StrandChunk.Lanes * height, height, _needs, _chunkSystems);
+        var prefetch = new Prefetcher(w, s0 + StrandChunk.Lanes, first + StrandChunk.Lanes * height, height, _constantRows, _withBlocks);
         int calls = ctx.Substeps * (_rowPaced ? Math.Max(1, liveRows - 1) * StrandChunk.RowPrefetchCalls : _chunkSystems.Length);
         prefetch.PerCall = (prefetch.Lines + calls - 1) / calls;
         var chunk = new StrandChunk(tile, firsts, pinned, height, s0, _rowPaced ? (nint)(&prefetch) : 0, liveRows);
-        foreach (var c in _chunkSystems) c.PrepareChunk(w, s0, chunk);
+        foreach (var prepare in _prepares) prepare(w, s0, chunk);
         for (int s = 0; s < ctx.Substeps; s++)
             for (int k = 0; k < _chunkSystems.Length; k++)
             {
                 if (k == _fusedAway) continue; // the sweep after it integrates each row (FastBendSystem.FuseIntegrate)
-                if (_chunkSystems[k].RunChunk(scene, ctx, s, chunk)) { if (!_rowPaced) prefetch.Next(prefetch.PerCall); continue; }
+                if (_steps[k](scene, ctx, s, chunk)) { if (!_rowPaced) prefetch.Next(prefetch.PerCall); continue; }
                 if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tileRows, tile, pastCuts);
                 Store(tile, first, height, w);
                 RunOrdinary(scene, ctx, s0, s0 + StrandChunk.Lanes, s, k);
@@ -345,30 +391,27 @@ internal sealed class StrandChunkRunner
                 return false;
             }
         if (cutFrom < height) RestorePastCuts(w, s0, cutFrom, height, tileRows, tile, pastCuts);
-        Store(tile, first, height, w);
-        // The frame's containment of non-finite values (NonFiniteContainment), on the rows just stored, still in L1:
-        // scanning the world's buffers after the job read them all from memory again.
-        if (!StoredRowsFinite(tile, height)) containment.ResetNonFinite(w, ctx.HeadEnd, s0, s0 + StrandChunk.Lanes);
+        // The frame's containment of non-finite values (NonFiniteContainment), on the rows being stored, in registers
+        // or L1: scanning the world's buffers after the job read them all from memory again.
+        if (!Store(tile, first, height, w)) containment.ResetNonFinite(w, ctx.HeadEnd, s0, s0 + StrandChunk.Lanes);
         return true;
     }
 
     /// <summary>Whether the rows a chunk stores (every particle of its strands, past a cut too) hold only finite values.</summary>
     private static bool StoredRowsFinite(scoped StrandScratch tile, int height)
     {
-        // x − x is 0 for finite x and NaN for NaN and ±∞; a NaN stays NaN through the sums (as NonFiniteContainment.AllFinite).
-        var acc0 = Vector512<float>.Zero; var acc1 = Vector512<float>.Zero;
+        var max0 = Vector512<uint>.Zero; var max1 = Vector512<uint>.Zero;
         int cells = height * StrandChunk.Lanes;
         foreach (int f in StoredFields)
         {
             ref float row = ref tile.Data[tile.Offset(f)];
             for (int i = 0; i < cells; i += 32)
             {
-                var a = Vector512.LoadUnsafe(ref row, (nuint)i); var b = Vector512.LoadUnsafe(ref row, (nuint)(i + 16));
-                acc0 += a - a; acc1 += b - b;
+                max0 = Vector512.Max(max0, Simd.FiniteProbe(Vector512.LoadUnsafe(ref row, (nuint)i)));
+                max1 = Vector512.Max(max1, Simd.FiniteProbe(Vector512.LoadUnsafe(ref row, (nuint)(i + 16))));
             }
         }
-        acc0 += acc1;
-        return Vector512.EqualsAll(acc0, acc0);
+        return Simd.AllFinite(Vector512.Max(max0, max1));
     }
 
     /// <summary>Strands [begin, end) through every substep system by system, then the containment's scan of them.</summary>
@@ -383,7 +426,8 @@ internal sealed class StrandChunkRunner
     {
         Prefetcher.Strands(w.StrandFirst, s0); Prefetcher.First(w.StrandCapacity, s0); Prefetcher.Strands(w.StrandParticleCount, s0);
         Prefetcher.First(_acceptedAt, s0);
-        foreach (var c in _chunkSystems) c.PrefetchChunkState(s0);
+        _constantRows.PrefetchState(s0);
+        foreach (var prefetchState in _prefetchState) prefetchState(s0);
     }
 
     /// <summary>Position and velocity: what a chunk stores, so what must be put back past a cut.</summary>
@@ -494,6 +538,17 @@ internal sealed class StrandChunkRunner
         for (int f = StrandChunk.KickX; f <= StrandChunk.KickZ; f++) tile.Data.Slice(tile.Offset(f), StrandChunk.Lanes).Clear();
     }
 
+    /// <summary>The world's array behind a chunk field that only an edit changes (<see cref="ChunkConstantRows"/>).</summary>
+    private static float[] ConstantSource(HairWorld w, int field) => field switch
+    {
+        StrandChunk.InvMass => w.InvMass,
+        StrandChunk.RestLength => w.RestLength,
+        StrandChunk.ShapePrev => w.ShapePrev,
+        StrandChunk.ShapeMid => w.ShapeMid,
+        StrandChunk.ShapeNext => w.ShapeNext,
+        _ => throw new ArgumentOutOfRangeException(nameof(field)),
+    };
+
     /// <summary>Transposes 32 strands of a world field into the chunk's rows.</summary>
     private static void Load(float[] src, int first, int height, scoped StrandScratch tile, int field) =>
         LoadRows(src, first, height, ref tile.Data[tile.Offset(field)]);
@@ -539,10 +594,31 @@ internal sealed class StrandChunkRunner
         MemoryMarshal.CreateSpan(ref Unsafe.Add(ref row0, height * L), (16 * blocks - height) * L).Clear();
     }
 
-    private static void Store(scoped StrandScratch tile, int first, int height, HairWorld w)
+    /// <summary>The chunk's positions and velocities into the world; whether they were all finite.</summary>
+    private static bool Store(scoped StrandScratch tile, int first, int height, HairWorld w)
     {
+        if (height == StrandChunk.Rows)
+        {
+            // The common capacity: the check rides on the transposes' registers.
+            var probes = Store16(tile, StrandChunk.X, w.PosX, first);
+            probes = Vector512.Max(probes, Store16(tile, StrandChunk.Y, w.PosY, first));
+            probes = Vector512.Max(probes, Store16(tile, StrandChunk.Z, w.PosZ, first));
+            probes = Vector512.Max(probes, Store16(tile, StrandChunk.VelX, w.VelX, first));
+            probes = Vector512.Max(probes, Store16(tile, StrandChunk.VelY, w.VelY, first));
+            probes = Vector512.Max(probes, Store16(tile, StrandChunk.VelZ, w.VelZ, first));
+            return Simd.AllFinite(probes);
+        }
         Store(tile, StrandChunk.X, w.PosX, first, height); Store(tile, StrandChunk.Y, w.PosY, first, height); Store(tile, StrandChunk.Z, w.PosZ, first, height);
         Store(tile, StrandChunk.VelX, w.VelX, first, height); Store(tile, StrandChunk.VelY, w.VelY, first, height); Store(tile, StrandChunk.VelZ, w.VelZ, first, height);
+        return StoredRowsFinite(tile, height);
+    }
+
+    /// <summary>A field of a 16-row chunk into the world: two 16 × 16 transposes, with their finite probes.</summary>
+    private static Vector512<uint> Store16(scoped StrandScratch tile, int field, float[] dst, int first)
+    {
+        ref float row0 = ref tile.Data[tile.Offset(field)];
+        return Vector512.Max(Transpose.Out16WideProbed(ref row0, StrandChunk.Lanes, ref Simd.At(dst, first)),
+            Transpose.Out16WideProbed(ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes, ref Simd.At(dst, first + 16 * StrandChunk.Rows)));
     }
 
     private static void Store(scoped StrandScratch tile, int field, float[] dst, int first, int height)
@@ -575,8 +651,7 @@ internal sealed class StrandChunkRunner
             }
             return;
         }
-        Transpose.Out16Wide(ref row0, StrandChunk.Lanes, ref Simd.At(dst, first), add: false);
-        Transpose.Out16Wide(ref Unsafe.Add(ref row0, 16), StrandChunk.Lanes, ref Simd.At(dst, first + 16 * StrandChunk.Rows), add: false);
+        Store16(tile, field, dst, first);
     }
 
     /// <summary>Particles of block b (rows 16b …) a strand of this capacity has.</summary>
@@ -614,7 +689,7 @@ internal unsafe struct Prefetcher
     private int _cursor;
     private readonly int _linesPerField;
 
-    public Prefetcher(HairWorld w, int s0, int first, int height, ChunkFields needs, IStrandChunkSystem[] systems)
+    public Prefetcher(HairWorld w, int s0, int first, int height, ChunkConstantRows constant, IStrandChunkSystem[] systems)
     {
         _cursor = 0; _fieldAt = 0; _lineAt = 0;
         int n = 0, cells = StrandChunk.Lanes * height;
@@ -623,9 +698,12 @@ internal unsafe struct Prefetcher
         if (first + cells <= w.ParticleCount && Sse.IsSupported)
         {
             Add(w.PosX, first, ref n); Add(w.PosY, first, ref n); Add(w.PosZ, first, ref n);
-            Add(w.VelX, first, ref n); Add(w.VelY, first, ref n); Add(w.VelZ, first, ref n); Add(w.InvMass, first, ref n);
-            if ((needs & ChunkFields.RestLength) != 0) Add(w.RestLength, first, ref n);
-            if ((needs & ChunkFields.Shape) != 0) { Add(w.ShapePrev, first, ref n); Add(w.ShapeMid, first, ref n); Add(w.ShapeNext, first, ref n); }
+            Add(w.VelX, first, ref n); Add(w.VelY, first, ref n); Add(w.VelZ, first, ref n);
+            // The masses and rest data as kept in row layout (what the next chunk copies if it was seen unedited).
+            var kept = constant.Blocks;
+            int count = constant.Fields.Length;
+            if ((long)count * (first + cells) <= kept.Length)
+                for (int f = 0; f < count; f++) Add(kept, count * first + f * cells, ref n);
             foreach (var c in systems)
             {
                 var block = c.ChunkBlock(s0, first, cells, out int offset, out int fields);

@@ -56,6 +56,27 @@ internal static partial class Transpose
     /// 16 floats are read from each strand's start, so rows past the capacity hold the next strand's particles (the
     /// caller masks them) and the caller must leave 16 − stride floats readable past the last strand.
     /// </summary>
+    /// <summary>
+    /// <see cref="Out16Wide"/> without add, returning the unsigned maximum of the stored floats' <see cref="Simd.FiniteProbe"/>s:
+    /// the chunk's check for NaN and ±∞ on values already in registers, instead of a pass that loads them again.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
+    public static Vector512<uint> Out16WideProbed(ref float tile, int lanes, ref float strands)
+    {
+        Block16(ref tile, lanes, out var o0, out var o1, out var o2, out var o3, out var o4, out var o5, out var o6, out var o7,
+            out var o8, out var o9, out var o10, out var o11, out var o12, out var o13, out var o14, out var o15);
+        St16(ref strands, 0, o0); St16(ref strands, 16, o1); St16(ref strands, 32, o2); St16(ref strands, 48, o3);
+        St16(ref strands, 64, o4); St16(ref strands, 80, o5); St16(ref strands, 96, o6); St16(ref strands, 112, o7);
+        St16(ref strands, 128, o8); St16(ref strands, 144, o9); St16(ref strands, 160, o10); St16(ref strands, 176, o11);
+        St16(ref strands, 192, o12); St16(ref strands, 208, o13); St16(ref strands, 224, o14); St16(ref strands, 240, o15);
+        var a = Vector512.Max(Vector512.Max(Probe(o0, o1), Probe(o2, o3)), Vector512.Max(Probe(o4, o5), Probe(o6, o7)));
+        var b = Vector512.Max(Vector512.Max(Probe(o8, o9), Probe(o10, o11)), Vector512.Max(Probe(o12, o13), Probe(o14, o15)));
+        return Vector512.Max(a, b);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector512<uint> Probe(Vector512<float> a, Vector512<float> b) => Vector512.Max(Simd.FiniteProbe(a), Simd.FiniteProbe(b));
+
     [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     public static void In16Strided(ref float strands, int stride, ref float tile, int lanes)
     {

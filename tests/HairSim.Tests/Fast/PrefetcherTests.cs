@@ -16,8 +16,10 @@ public class PrefetcherTests
         if (!Sse.IsSupported) return; // prefetches are x86 hints; elsewhere nothing is fetched
         var g = CanonicalCases.SmallGroom(particles, 4, 32);
         var w = GroomBuilder.BuildScene(g, new SimulationSettings()).World;
-        var p = new Prefetcher(w, 32, w.StrandFirst[32], particles, ChunkFields.RestLength, []);
-        // Positions, velocities, masses and rest lengths: 8 fields of 32 strands' particles, in 64-byte lines.
+        var kept = new ChunkConstantRows(ChunkFields.RestLength);
+        kept.Fit(w);
+        var p = new Prefetcher(w, 32, w.StrandFirst[32], particles, kept, []);
+        // Positions, velocities, masses and rest lengths (the last two as kept in row layout): 8 fields of 32 strands' particles, in 64-byte lines.
         Assert.Equal(8 * 32 * particles * sizeof(float) / 64, p.Lines);
         int calls = substeps * callsPerSubstep;
         p.PerCall = (p.Lines + calls - 1) / calls;
@@ -62,7 +64,9 @@ public class PrefetcherTests
         var g = CanonicalCases.SmallGroom(16, 1, 32);
         var w = GroomBuilder.BuildScene(g, new SimulationSettings()).World;
         // The chunk after the last one does not exist.
-        var p = new Prefetcher(w, 32, w.ParticleCount, 16, ChunkFields.RestLength, []);
+        var kept = new ChunkConstantRows(ChunkFields.RestLength);
+        kept.Fit(w);
+        var p = new Prefetcher(w, 32, w.ParticleCount, 16, kept, []);
         Assert.Equal(0, p.Lines);
         p.Next(10);
         Assert.Equal(0, p.Issued);

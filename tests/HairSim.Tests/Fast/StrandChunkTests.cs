@@ -99,6 +99,28 @@ public class StrandChunkTests(ITestOutputHelper output)
     }
 
     [Fact]
+    public void MassesAndRestLengthsEditedBetweenFramesReachTheChunksThatKeepThemInRows()
+    {
+        // Chunks keep their masses and rest lengths in row layout until the next edit (ChunkConstantRows): a pin added
+        // in the middle of strands that stay in chunks, and rest lengths stretched, must reach them at the next frame.
+        var stepped = SideBySide(16, (chunked, plain, _, f) =>
+        {
+            if (f != 6 && f != 11) return;
+            foreach (var w in new[] { chunked.World, plain.World })
+            {
+                for (int s = 0; s < 64; s++)
+                {
+                    int first = w.StrandFirst[s], n = w.StrandParticleCount[s];
+                    if (f == 6) w.InvMass[first + n / 2] = 0f; // a second pin, half way down
+                    else for (int i = first + 1; i < first + n; i++) w.RestLength[i] *= 1.25f;
+                }
+                w.MarkEdited();
+            }
+        });
+        if (ChunksExpected) Assert.All(stepped.Skip(1), n => Assert.True(n > 0, "every frame steps chunks"));
+    }
+
+    [Fact]
     public void AnEditBetweenFramesReachesTheChunksItTurnsAway()
     {
         // Which runs of strands make chunks is remembered per chunk until the next edit: strands an edit sets free (no

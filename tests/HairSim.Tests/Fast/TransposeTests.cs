@@ -57,6 +57,32 @@ public class TransposeTests
     }
 
     [Theory]
+    [InlineData(float.NaN)]
+    [InlineData(float.PositiveInfinity)]
+    [InlineData(float.NegativeInfinity)]
+    [InlineData(-float.NaN)]
+    public void Out16WideProbedStoresAsOut16WideAndFindsANonFiniteValueWherever(float bad)
+    {
+        if (!FastPathInfo.Avx512) { Assert.False(new FastLengthSystem(16).UsesWide); return; } // only 32-lane tiles use it
+        var s = Strands();
+        // The finite extremes must not count: the largest and smallest magnitudes, both signs, zeros.
+        s[3] = float.MaxValue; s[7] = -float.MaxValue; s[11] = float.Epsilon; s[13] = -0f; s[17] = -float.Epsilon;
+        var tile = new float[16 * Lanes];
+        Transpose.In16Wide(ref s[0], ref tile[16], Lanes);
+        var expected = new float[256]; var probed = new float[256];
+        Transpose.Out16Wide(ref tile[16], Lanes, ref expected[0], add: false);
+        Assert.True(Simd.AllFinite(Transpose.Out16WideProbed(ref tile[16], Lanes, ref probed[0])));
+        Assert.Equal(expected, probed);
+        for (int k = 0; k < 16; k++)
+            for (int l = 0; l < 16; l++)
+            {
+                var t = (float[])tile.Clone();
+                t[k * Lanes + 16 + l] = bad;
+                Assert.False(Simd.AllFinite(Transpose.Out16WideProbed(ref t[16], Lanes, ref probed[0])), $"row {k}, lane {l}");
+            }
+    }
+
+    [Theory]
     [InlineData(2, 16)]
     [InlineData(3, 16)]
     [InlineData(3, 11)]
