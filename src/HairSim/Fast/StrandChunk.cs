@@ -178,7 +178,7 @@ internal sealed class StrandChunkRunner
     private readonly IHairSystem[] _systems;
     private readonly IStrandChunkSystem[] _chunkSystems;
     // The per-chunk calls, bound to each system's own method once: a call through the interface at a site that sees
-    // several systems went through the runtime's resolve stub every time (1.5–2 % of a one-substep frame). Systems
+    // several systems went through the runtime's resolve stub every time (a visible share of a one-substep frame). Systems
     // that keep the interface's empty default of a call are left out of that call's list.
     private readonly ChunkStep[] _steps;
     private readonly ChunkPrepare[] _prepares;
