@@ -1,13 +1,9 @@
-using System.Runtime.CompilerServices;
-using System.Runtime.InteropServices;
-using System.Runtime.Intrinsics;
-
 namespace HairSim.Fast;
 
 /// <summary>
 /// The chunk rows of the per-particle fields that only an edit changes (inverse masses, and the rest lengths and rest
 /// shape when a system needs them), kept in row layout between frames with the chunk's pinned-row mask. A chunk seen
-/// again unedited copies its rows from here (vector copies) instead of transposing them out of the world's arrays
+/// again unedited copies its rows from here instead of transposing them out of the world's arrays
 /// (two 16 × 16 transposes a field), and skips the pinned-row scan. Writers of masses or rest data call
 /// <see cref="HairWorld.MarkEdited"/> (as every cache derived from them requires), which retires every block.
 /// Keyed like head follow's pinned rows: per chunk (at its first strand) the edit stamp its block was made under,
@@ -66,33 +62,51 @@ internal sealed class ChunkConstantRows
     {
         int cells = StrandChunk.Lanes * height;
         int padded = Transpose.TakesShort(height) ? cells : (height + 15) / 16 * 16 * StrandChunk.Lanes;
-        ref float block = ref MemoryMarshal.GetArrayDataReference(_rows);
-        nint at = (nint)_fields.Length * first;
+        int at = _fields.Length * first;
         foreach (int f in _fields)
         {
-            ref float row = ref tile.Data[tile.Offset(f)];
-            Copy(ref Unsafe.Add(ref block, at), ref row, cells);
-            if (padded > cells) MemoryMarshal.CreateSpan(ref Unsafe.Add(ref row, cells), padded - cells).Clear();
+            var rows = tile.Data.Slice(tile.Offset(f), padded);
+            _rows.AsSpan(at, cells).CopyTo(rows);
+            rows.Slice(cells).Clear();
             at += cells;
         }
         return _pinned[s0];
     }
 
-    /// <summary>Keeps the chunk's rows as just loaded into the tile (before the cut masks change the masses), with its pinned-row mask.</summary>
-    public void Keep(HairWorld w, int s0, int first, int height, scoped StrandScratch tile)
+    /// <summary>
+    /// The chunk's rows transposed from the world's arrays into the tile (as every chunk loaded them before), and kept
+    /// here as loaded (before the cut masks change the masses); valid once <see cref="KeepPinned"/> adds the mask.
+    /// </summary>
+    public void LoadAndKeep(HairWorld w, int s0, int first, int height, scoped StrandScratch tile)
+    {
+        foreach (int f in _fields) StrandChunkRunner.LoadRows(Source(w, f), first, height, ref tile.Data[tile.Offset(f)]);
+        Keep(w, s0, first, height, tile);
+    }
+
+    /// <summary>The world's array behind a kept field.</summary>
+    private static float[] Source(HairWorld w, int field) => field switch
+    {
+        StrandChunk.InvMass => w.InvMass,
+        StrandChunk.RestLength => w.RestLength,
+        StrandChunk.ShapePrev => w.ShapePrev,
+        StrandChunk.ShapeMid => w.ShapeMid,
+        StrandChunk.ShapeNext => w.ShapeNext,
+        _ => throw new ArgumentOutOfRangeException(nameof(field)),
+    };
+
+    private void Keep(HairWorld w, int s0, int first, int height, scoped StrandScratch tile)
     {
         int cells = StrandChunk.Lanes * height;
         if (_madeAt.Length != w.StrandCount || (long)_fields.Length * (first + cells) > _rows.Length) return;
-        ref float block = ref MemoryMarshal.GetArrayDataReference(_rows);
-        nint at = (nint)_fields.Length * first;
+        int at = _fields.Length * first;
         foreach (int f in _fields)
         {
-            Copy(ref tile.Data[tile.Offset(f)], ref Unsafe.Add(ref block, at), cells);
+            tile.Data.Slice(tile.Offset(f), cells).CopyTo(_rows.AsSpan(at, cells));
             at += cells;
         }
         // Not yet valid: the mask comes after the cut masks (KeepPinned).
         _madeAt[s0] = 0;
-        for (int s = s0; s < s0 + StrandChunk.Lanes; s++) _owner[s] = s0;
+        StrandChunk.ClaimBlock(_owner, s0);
     }
 
     /// <summary>The chunk's pinned-row mask (from the masked masses); the block is valid from here until the next edit.</summary>
@@ -101,16 +115,5 @@ internal sealed class ChunkConstantRows
         if (_madeAt.Length != w.StrandCount || _owner[s0] != s0) return;
         _pinned[s0] = pinned;
         _madeAt[s0] = w.EditStamp + 1L;
-    }
-
-    /// <summary>cells floats (a multiple of 32: whole rows) from one place to another.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Copy(ref float from, ref float to, int cells)
-    {
-        for (int i = 0; i < cells; i += 32)
-        {
-            Vector512.LoadUnsafe(ref from, (nuint)i).StoreUnsafe(ref to, (nuint)i);
-            Vector512.LoadUnsafe(ref from, (nuint)(i + 16)).StoreUnsafe(ref to, (nuint)(i + 16));
-        }
     }
 }

@@ -94,7 +94,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
             StrandChunkRunner.LoadRows(src[f], first, height, ref rows);
             MemoryMarshal.CreateReadOnlySpan(ref rows, cells).CopyTo(_chunkBend.AsSpan(ChunkBendFields * first + f * cells, cells));
         }
-        for (int s = s0; s < s0 + StrandChunk.Lanes; s++) _chunkBlock[s] = s0;
+        StrandChunk.ClaimBlock(_chunkBlock, s0);
     }
 
     /// <summary>The chunk's block of rest directions and joint shares, which the sweep reads in place: prefetched with the chunk's fields.</summary>

@@ -111,7 +111,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
         if (!rowsCached) return;
         CopyPinRows(chunk, fromBlock: false);
         _pinRowsAt[s0] = at; _pinRowsMask[s0] = chunk.PinnedRows;
-        for (int s = s0; s < s0 + StrandChunk.Lanes; s++) _pinRowsOwner[s] = s0;
+        StrandChunk.ClaimBlock(_pinRowsOwner, s0);
     }
 
     /// <summary>

@@ -76,6 +76,9 @@ internal readonly ref struct StrandChunk
     /// </summary>
     public static bool OwnsBlock(int[] owner, int s0) => owner[s0] == s0 && owner[s0 + Lanes - 1] == s0;
 
+    /// <summary>Marks the chunk from s0 as the owner of its 32 strands' entries in <paramref name="owner"/> (see <see cref="OwnsBlock"/>).</summary>
+    public static void ClaimBlock(int[] owner, int s0) => owner.AsSpan(s0, Lanes).Fill(s0);
+
     /// <summary>Row <paramref name="row"/> of a particle field.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public ref float Row(int field, int row) => ref Unsafe.Add(ref Tile.Data[0], Tile.Offset(field) + row * Lanes);
@@ -360,8 +363,7 @@ internal sealed class StrandChunkRunner
         ulong pinned = kept ? _constantRows.CopyTo(s0, first, height, tile) : 0;
         if (!kept)
         {
-            foreach (int f in _constantRows.Fields) Load(ConstantSource(w, f), first, height, tile, f);
-            _constantRows.Keep(w, s0, first, height, tile);
+            _constantRows.LoadAndKeep(w, s0, first, height, tile);
         }
         int cutFrom = _takesCut ? SavePastCuts(w, s0, height, tileRows, tile, pastCuts) : StrandChunk.Rows;
         // Rows past every strand's cut need no sweep: the longest live strand's count.
@@ -537,17 +539,6 @@ internal sealed class StrandChunkRunner
         // The root row's velocity kick: the length sweep never writes it.
         for (int f = StrandChunk.KickX; f <= StrandChunk.KickZ; f++) tile.Data.Slice(tile.Offset(f), StrandChunk.Lanes).Clear();
     }
-
-    /// <summary>The world's array behind a chunk field that only an edit changes (<see cref="ChunkConstantRows"/>).</summary>
-    private static float[] ConstantSource(HairWorld w, int field) => field switch
-    {
-        StrandChunk.InvMass => w.InvMass,
-        StrandChunk.RestLength => w.RestLength,
-        StrandChunk.ShapePrev => w.ShapePrev,
-        StrandChunk.ShapeMid => w.ShapeMid,
-        StrandChunk.ShapeNext => w.ShapeNext,
-        _ => throw new ArgumentOutOfRangeException(nameof(field)),
-    };
 
     /// <summary>Transposes 32 strands of a world field into the chunk's rows.</summary>
     private static void Load(float[] src, int first, int height, scoped StrandScratch tile, int field) =>
