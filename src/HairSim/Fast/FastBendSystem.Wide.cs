@@ -54,7 +54,7 @@ public sealed partial class FastBendSystem
                 // The root row (pins, which integration leaves as they are, unless a lane holds a free root).
                 nuint r0 = (nuint)h;
                 var x0 = Ld16(ref X, r0); var y0 = Ld16(ref Y, r0); var z0 = Ld16(ref Z, r0);
-                Integrate16(ref Vx, ref Vy, ref Vz, r0, Vector512.Equals(Ld16(ref M, r0), zero), false, in p, ref x0, ref y0, ref z0, out _, out _, out _);
+                Integrate16(ref Vx, ref Vy, ref Vz, r0, Ld16(ref M, r0), false, in p, ref x0, ref y0, ref z0, out _, out _, out _);
                 St16(ref X, r0, x0); St16(ref Y, r0, y0); St16(ref Z, r0, z0);
             }
             St16(ref sh, Sqx * lanes, Vector512.Create(p.Qx)); St16(ref sh, Sqy * lanes, Vector512.Create(p.Qy));
@@ -77,58 +77,70 @@ public sealed partial class FastBendSystem
                 nuint u = (nuint)(k * lanes + h), up = u - (nuint)lanes, un = u + (nuint)lanes;
                 var px = Ld16(ref X, up); var py = Ld16(ref Y, up); var pz = Ld16(ref Z, up);
                 var x = Ld16(ref X, u); var y = Ld16(ref Y, u); var z = Ld16(ref Z, u);
-                var pinned = Vector512.Equals(Ld16(ref M, u), zero);
-                var free = ~pinned;
-                bool allFree = AllSet(free), noneFree = free == V.Zero;
+                // The tests that pick a row's common case reduce their compares straight to a flag (a compare into a
+                // mask register and a test); the masks themselves are formed only on the rare paths that select by them.
+                var m = Ld16(ref M, u);
+                bool allFree = !Vector512.EqualsAny(m, zero), noneFree = Vector512.EqualsAll(m, zero);
                 V vux, vuy, vuz;
                 if (typeof(TIntegrate) == typeof(Fused))
-                    Integrate16(ref Vx, ref Vy, ref Vz, u, pinned, allFree, in p, ref x, ref y, ref z, out vux, out vuy, out vuz);
+                    Integrate16(ref Vx, ref Vy, ref Vz, u, m, allFree, in p, ref x, ref y, ref z, out vux, out vuy, out vuz);
                 else { vux = Ld16(ref Vx, u); vuy = Ld16(ref Vy, u); vuz = Ld16(ref Vz, u); }
                 var rl = Ld16(ref Ln, u);
                 var rx = Ld16(ref Rx, u); var ry = Ld16(ref Ry, u); var rz = Ld16(ref Rz, u);
                 var ex = x - px; var ey = y - py; var ez = z - pz;
                 var len2 = Fma(ez, ez, Fma(ey, ey, ex * ex));
                 var len = Vector512.Sqrt(len2);
-                var hasLen = Vector512.GreaterThan(len, zero);
                 // Masks that are all set (the common case: every lane a live, moving, non-degenerate segment) make
                 // their selects identities, so those are skipped: the same bits with fewer operations.
                 // 1/len as len/len² where len² is far from underflow: the root and the division run side by side
                 // instead of one after the other (the row's new position waits on them, and on |m| below).
-                var clear = Vector512.GreaterThan(len2, Vector512.Create(1e-30f));
-                bool allClear = AllSet(clear);
+                bool allClear = Vector512.GreaterThanAll(len2, Vector512.Create(1e-30f));
                 var inv2 = one / len2;
-                var inv = allClear ? len * inv2 : Sel16(clear, len * inv2, Sel16(hasLen, one / Sel16(hasLen, len, one), zero));
+                var inv = len * inv2;
+                if (!allClear)
+                {
+                    var hasLen = Vector512.GreaterThan(len, zero);
+                    inv = Sel16(Vector512.GreaterThan(len2, Vector512.Create(1e-30f)), inv, Sel16(hasLen, one / Sel16(hasLen, len, one), zero));
+                }
                 var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
                 // Target: the rest direction turned by the frame carried from the root, worked out at the end of the
                 // row above (see below).
                 var tx = Ld16(ref sh, Stx * lanes); var ty = Ld16(ref sh, Sty * lanes); var tz = Ld16(ref sh, Stz * lanes);
                 // A rest direction to turn (any component non-zero, by bits: no multiplies).
-                var restOk = ~Vector512.Equals((rx.AsUInt32() | ry.AsUInt32() | rz.AsUInt32()) & Vector512.Create(0x7fffffffu), Vector512<uint>.Zero).AsSingle();
-                if (!AllSet(restOk))
+                var restBits = (rx.AsUInt32() | ry.AsUInt32() | rz.AsUInt32()) & Vector512.Create(0x7fffffffu);
+                if (Vector512.EqualsAny(restBits, Vector512<uint>.Zero))
                 {
+                    var restOk = ~Vector512.Equals(restBits, Vector512<uint>.Zero).AsSingle();
+                    var hasLen = Vector512.GreaterThan(len, zero);
                     tx = Sel16(restOk, tx, Sel16(hasLen, ux0, zero));
                     ty = Sel16(restOk, ty, Sel16(hasLen, uy0, Vector512.Create(-1f)));
                     tz = Sel16(restOk, tz, Sel16(hasLen, uz0, zero));
                 }
-                var okLen = Vector512.GreaterThan(len, Vector512.Create(1e-6f) * rl) & hasLen;
+                // Every lane long enough (len > 0 follows from len² > 1e-30).
+                bool allOkLen = allClear && Vector512.GreaterThanAll(len, Vector512.Create(1e-6f) * rl);
                 V dx = ux0, dy = uy0, dz = uz0;
-                if (!AllSet(okLen)) { dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz); }
+                if (!allOkLen)
+                {
+                    var okLen = OkLen(len, rl);
+                    dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz);
+                }
                 // How far this segment turned since the substep's start (see BendSystem).
                 var ux = Fms(Vector512.Create(p.H), vux, Fma(Vector512.Create(p.H), Ld16(ref Vx, up), Ld16(ref sh, SDx * lanes)));
                 var uy = Fms(Vector512.Create(p.H), vuy, Fma(Vector512.Create(p.H), Ld16(ref Vy, up), Ld16(ref sh, SDy * lanes)));
                 var uz = Fms(Vector512.Create(p.H), vuz, Fma(Vector512.Create(p.H), Ld16(ref Vz, up), Ld16(ref sh, SDz * lanes)));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
-                V mx = zero, my = zero, mz = zero, ml = zero, mOk = zero;
+                V mx = zero, my = zero, mz = zero, ml = zero;
+                bool allMOk = false;
                 V cdx = zero, cdy = zero, cdz = zero;
                 if (!noneFree)
                 {
                     // Where d = e/len: (u − (u·d)d)/len = (u − (u·e)/len² e)/len, whose u·e does not wait for the root.
                     var ue = Fma(uz, ez, Fma(uy, ey, ux * ex)) * inv2;
                     var tcx = Fnma(ue, ex, ux) * inv; var tcy = Fnma(ue, ey, uy) * inv; var tcz = Fnma(ue, ez, uz) * inv;
-                    var byE = clear & okLen;
-                    if (!AllSet(byE))
+                    if (!allOkLen)
                     {
+                        var byE = Vector512.GreaterThan(len2, Vector512.Create(1e-30f)) & OkLen(len, rl);
                         var al = Fma(uz, dz, Fma(uy, dy, ux * dx));
                         tcx = Sel16(byE, tcx, Fnma(al, dx, ux) * inv); tcy = Sel16(byE, tcy, Fnma(al, dy, uy) * inv); tcz = Sel16(byE, tcz, Fnma(al, dz, uz) * inv);
                     }
@@ -142,30 +154,40 @@ public sealed partial class FastBendSystem
                     mx = Fma(b, sx, Fma(a, ox, tx)); my = Fma(b, sy, Fma(a, oy, ty)); mz = Fma(b, sz, Fma(a, oz, tz));
                     var m2 = Fma(mz, mz, Fma(my, my, mx * mx));
                     ml = Vector512.Sqrt(m2);
-                    mOk = Vector512.GreaterThan(ml, Vector512.Create(1e-6f));
-                    if (AllSet(mOk))
+                    allMOk = Vector512.GreaterThanAll(ml, Vector512.Create(1e-6f));
+                    if (allMOk)
                     {
                         var invM = ml * (one / m2);
                         if (allFree) { dx = mx * invM; dy = my * invM; dz = mz * invM; }
-                        else { dx = Sel16(free, mx * invM, dx); dy = Sel16(free, my * invM, dy); dz = Sel16(free, mz * invM, dz); }
+                        else
+                        {
+                            var free = ~Vector512.Equals(m, zero);
+                            dx = Sel16(free, mx * invM, dx); dy = Sel16(free, my * invM, dy); dz = Sel16(free, mz * invM, dz);
+                        }
                     }
                     else
                     {
+                        var free = ~Vector512.Equals(m, zero);
+                        var mOk = Vector512.GreaterThan(ml, Vector512.Create(1e-6f));
                         var invM = ml * (one / Sel16(mOk, m2, one));
                         var ndx = Sel16(mOk, mx * invM, tx); var ndy = Sel16(mOk, my * invM, ty); var ndz = Sel16(mOk, mz * invM, tz);
                         dx = Sel16(free, ndx, dx); dy = Sel16(free, ndy, dy); dz = Sel16(free, ndz, dz);
                     }
                     var nx = Fma(dx, rl, px); var ny = Fma(dy, rl, py); var nz = Fma(dz, rl, pz);
                     cdx = nx - x; cdy = ny - y; cdz = nz - z;
-                    if (!allFree) { cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
+                    if (!allFree) { var free = ~Vector512.Equals(m, zero); cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
                 }
                 x += cdx; y += cdy; z += cdz;
                 St16(ref X, u, x); St16(ref Y, u, y); St16(ref Z, u, z);
                 // The row above takes its kick now that this row's correction is known.
-                Kick16(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? zero : ~Vector512.Equals(Ld16(ref M, up), zero),
-                    Ld16(ref sh, SDx * lanes), Ld16(ref sh, SDy * lanes), Ld16(ref sh, SDz * lanes),
-                    cdx + (allFree ? Vector512.Create(p.FallX) : Sel16(free, Vector512.Create(p.FallX), zero)), cdy + (allFree ? Vector512.Create(p.FallY) : Sel16(free, Vector512.Create(p.FallY), zero)),
-                    cdz + (allFree ? Vector512.Create(p.FallZ) : Sel16(free, Vector512.Create(p.FallZ), zero)));
+                V fallX = Vector512.Create(p.FallX), fallY = Vector512.Create(p.FallY), fallZ = Vector512.Create(p.FallZ);
+                if (!allFree)
+                {
+                    var free = ~Vector512.Equals(m, zero);
+                    fallX = Sel16(free, fallX, zero); fallY = Sel16(free, fallY, zero); fallZ = Sel16(free, fallZ, zero);
+                }
+                Kick16(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? zero : Ld16(ref M, up),
+                    Ld16(ref sh, SDx * lanes), Ld16(ref sh, SDy * lanes), Ld16(ref sh, SDz * lanes), cdx + fallX, cdy + fallY, cdz + fallZ);
                 St16(ref sh, SDx * lanes, cdx); St16(ref sh, SDy * lanes, cdy); St16(ref sh, SDz * lanes, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
@@ -175,16 +197,19 @@ public sealed partial class FastBendSystem
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
                 // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised (below).
                 V gx = dx, gy = dy, gz = dz, gl = one;
-                if (allFree && AllSet(mOk)) { gx = mx; gy = my; gz = mz; gl = ml; }
-                else
+                if (allFree && allMOk) { gx = mx; gy = my; gz = mz; gl = ml; }
+                else if (!noneFree)
                 {
-                    var byM = free & mOk;
+                    var byM = ~Vector512.Equals(m, zero) & Vector512.GreaterThan(ml, Vector512.Create(1e-6f));
                     gx = Sel16(byM, mx, dx); gy = Sel16(byM, my, dy); gz = Sel16(byM, mz, dz); gl = Sel16(byM, ml, one);
                 }
                 var dot = Fma(tz, gz, Fma(ty, gy, tx * gx));
                 var fx = Fms(ty, gz, tz * gy); var fy = Fms(tz, gx, tx * gz); var fz = Fms(tx, gy, ty * gx); var fw = gl + dot;
-                var flip = Vector512.LessThan(dot, Vector512.Create(-0.9999f) * gl);
-                if (flip != V.Zero) { fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw); }
+                if (Vector512.LessThanAny(dot, Vector512.Create(-0.9999f) * gl))
+                {
+                    var flip = Vector512.LessThan(dot, Vector512.Create(-0.9999f) * gl);
+                    fx = Sel16(flip, zero, fx); fy = Sel16(flip, zero, fy); fz = Sel16(flip, zero, fz); fw = Sel16(flip, one, fw);
+                }
                 var invF2 = one / Fma(fw, fw, Fma(fz, fz, Fma(fy, fy, fx * fx)));
                 var qx = Ld16(ref sh, Sqx * lanes); var qy = Ld16(ref sh, Sqy * lanes); var qz = Ld16(ref sh, Sqz * lanes); var qw = Ld16(ref sh, Sqw * lanes);
                 // The frame so far, Q = f∘q, left unnormalised (|Q|² = |f|² as q is a unit quaternion): the next target,
@@ -213,7 +238,7 @@ public sealed partial class FastBendSystem
         for (int h = 0; h < lanes; h += width)
         {
             ref float sh = ref Unsafe.Add(ref s, h);
-            Kick16(ref Vx, ref Vy, ref Vz, in p, (nuint)((rows - 1) * lanes + h), ~Vector512.Equals(Ld16(ref M, (nuint)((rows - 1) * lanes + h)), zero),
+            Kick16(ref Vx, ref Vy, ref Vz, in p, (nuint)((rows - 1) * lanes + h), Ld16(ref M, (nuint)((rows - 1) * lanes + h)),
                 Ld16(ref sh, SDx * lanes), Ld16(ref sh, SDy * lanes), Ld16(ref sh, SDz * lanes), zero, zero, zero);
         }
     }
@@ -235,7 +260,7 @@ public sealed partial class FastBendSystem
     /// velocity stored and returned, its position (x, y, z in) moved by h·v on the free lanes.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Integrate16(ref float Vx, ref float Vy, ref float Vz, nuint r, V pinned, bool nonePinned, in SweepParams p,
+    private static void Integrate16(ref float Vx, ref float Vy, ref float Vz, nuint r, V m, bool nonePinned, in SweepParams p,
         ref V x, ref V y, ref V z, out V vx, out V vy, out V vz)
     {
         var ox = Ld16(ref Vx, r); var oy = Ld16(ref Vy, r); var oz = Ld16(ref Vz, r);
@@ -243,9 +268,9 @@ public sealed partial class FastBendSystem
         var nx = (ox + Vector512.Create(p.GravityStepX)) * keep; var ny = (oy + Vector512.Create(p.GravityStepY)) * keep;
         var nz = (oz + Vector512.Create(p.GravityStepZ)) * keep;
         var spSq = nx * nx + ny * ny + nz * nz;
-        var over = Vector512.GreaterThan(spSq, Vector512.Create(p.MaxSpeedSq));
-        if (over != V.Zero)
+        if (Vector512.GreaterThanAny(spSq, Vector512.Create(p.MaxSpeedSq)))
         {
+            var over = Vector512.GreaterThan(spSq, Vector512.Create(p.MaxSpeedSq));
             var f = Vector512.ConditionalSelect(over, Vector512.Create(p.MaxSpeed) / Vector512.Sqrt(spSq), V.One);
             nx *= f; ny *= f; nz *= f;
         }
@@ -258,6 +283,7 @@ public sealed partial class FastBendSystem
         }
         else
         {
+            var pinned = Vector512.Equals(m, V.Zero);
             vx = Sel16(pinned, ox, nx); vy = Sel16(pinned, oy, ny); vz = Sel16(pinned, oz, nz);
             x = Sel16(pinned, x, x + h * nx); y = Sel16(pinned, y, y + h * ny); z = Sel16(pinned, z, z + h * nz);
         }
@@ -266,19 +292,19 @@ public sealed partial class FastBendSystem
 
     /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Kick16(ref float Vx, ref float Vy, ref float Vz, in SweepParams p, nuint r, V free, V dx, V dy, V dz, V nx, V ny, V nz)
+    private static void Kick16(ref float Vx, ref float Vy, ref float Vz, in SweepParams p, nuint r, V m, V dx, V dy, V dz, V nx, V ny, V nz)
     {
         var vx = Ld16(ref Vx, r); var vy = Ld16(ref Vy, r); var vz = Ld16(ref Vz, r);
         var wx = Fma(Fnma(Vector512.Create(p.Reaction), nx, dx), Vector512.Create(p.InvH), vx); var wy = Fma(Fnma(Vector512.Create(p.Reaction), ny, dy), Vector512.Create(p.InvH), vy); var wz = Fma(Fnma(Vector512.Create(p.Reaction), nz, dz), Vector512.Create(p.InvH), vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
         var speedSq = Fma(wz, wz, Fma(wy, wy, wx * wx));
-        var over = Vector512.GreaterThan(speedSq, Vector512.Create(p.MaxSpeedSq));
-        if (over != V.Zero)
+        if (Vector512.GreaterThanAny(speedSq, Vector512.Create(p.MaxSpeedSq)))
         {
+            var over = Vector512.GreaterThan(speedSq, Vector512.Create(p.MaxSpeedSq));
             var f = Vector512.Create(p.MaxSpeed) / Sel16(over, Vector512.Sqrt(speedSq), V.One);
             wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
         }
-        if (!AllSet(free)) { wx = Sel16(free, wx, vx); wy = Sel16(free, wy, vy); wz = Sel16(free, wz, vz); }
+        if (Vector512.EqualsAny(m, V.Zero)) { var free = ~Vector512.Equals(m, V.Zero); wx = Sel16(free, wx, vx); wy = Sel16(free, wy, vy); wz = Sel16(free, wz, vz); }
         St16(ref Vx, r, wx);
         St16(ref Vy, r, wy);
         St16(ref Vz, r, wz);
@@ -294,9 +320,9 @@ public sealed partial class FastBendSystem
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static V Fms(V a, V b, V c) => Simd.MulSub(a, b, c);
 
-    /// <summary>Every lane of the mask set.</summary>
+    /// <summary>The lanes whose segment is long enough to give a direction: len &gt; 10⁻⁶·rest length, and len &gt; 0.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static bool AllSet(V mask) => Vector512.EqualsAll(mask.AsInt32(), Vector512<int>.AllBitsSet);
+    private static V OkLen(V len, V rl) => Vector512.GreaterThan(len, Vector512.Create(1e-6f) * rl) & Vector512.GreaterThan(len, V.Zero);
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static V Ld16(ref float r, int i) => Vector512.LoadUnsafe(ref r, (nuint)i);

@@ -52,11 +52,6 @@ internal static partial class Transpose
     }
 
     /// <summary>
-    /// 16 strands of capacity <paramref name="stride"/> ≤ 16, back to back, into rows (row k = particle k of each):
-    /// 16 floats are read from each strand's start, so rows past the capacity hold the next strand's particles (the
-    /// caller masks them) and the caller must leave 16 − stride floats readable past the last strand.
-    /// </summary>
-    /// <summary>
     /// <see cref="Out16Wide"/> without add, returning the unsigned maximum of the stored floats' <see cref="Simd.FiniteProbe"/>s:
     /// the chunk's check for NaN and ±∞ on values already in registers, instead of a pass that loads them again.
     /// </summary>
@@ -77,6 +72,11 @@ internal static partial class Transpose
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static Vector512<uint> Probe(Vector512<float> a, Vector512<float> b) => Vector512.Max(Simd.FiniteProbe(a), Simd.FiniteProbe(b));
 
+    /// <summary>
+    /// 16 strands of capacity <paramref name="stride"/> ≤ 16, back to back, into rows (row k = particle k of each):
+    /// 16 floats are read from each strand's start, so rows past the capacity hold the next strand's particles (the
+    /// caller masks them) and the caller must leave 16 − stride floats readable past the last strand.
+    /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     public static void In16Strided(ref float strands, int stride, ref float tile, int lanes)
     {
