@@ -67,29 +67,47 @@ public sealed partial class FastBendSystem
                 ref float sh = ref Unsafe.Add(ref s, h);
                 var px = Simd.Ld(ref X, up); var py = Simd.Ld(ref Y, up); var pz = Simd.Ld(ref Z, up);
                 var x = Simd.Ld(ref X, u); var y = Simd.Ld(ref Y, u); var z = Simd.Ld(ref Z, u);
-                var free = ~Vector.Equals(Simd.Ld(ref M, u), zero);
+                // Masks that are all set (the common case: every lane a live, moving, non-degenerate segment) make
+                // their selects identities, so those are skipped (as in Sweep16): the same bits with fewer operations.
+                var m = Simd.Ld(ref M, u);
+                bool allFree = !Vector.EqualsAny(m, zero), noneFree = Vector.EqualsAll(m, zero);
                 var rl = Simd.Ld(ref Ln, u);
                 var rx = Simd.Ld(ref Rx, u); var ry = Simd.Ld(ref Ry, u); var rz = Simd.Ld(ref Rz, u);
                 var ex = x - px; var ey = y - py; var ez = z - pz;
                 var len2 = Simd.MulAdd(ez, ez, Simd.MulAdd(ey, ey, ex * ex));
                 var len = Vector.SquareRoot(len2);
-                var hasLen = Vector.GreaterThan(len, zero);
                 // 1/len as len/len² where len² is far from underflow: the root and the division run side by side
                 // instead of one after the other (the row's new position waits on them, and on |m| below).
-                var clear = Vector.GreaterThan(len2, new V(1e-30f));
+                bool allClear = Vector.GreaterThanAll(len2, new V(1e-30f));
                 var inv2 = one / len2;
-                var inv = Simd.Sel(clear, len * inv2, Simd.Sel(hasLen, one / Simd.Sel(hasLen, len, one), zero));
+                var inv = len * inv2;
+                if (!allClear)
+                {
+                    var hasLen = Vector.GreaterThan(len, zero);
+                    inv = Simd.Sel(Vector.GreaterThan(len2, new V(1e-30f)), inv, Simd.Sel(hasLen, one / Simd.Sel(hasLen, len, one), zero));
+                }
                 var ux0 = ex * inv; var uy0 = ey * inv; var uz0 = ez * inv;
                 // Target: the rest direction turned by the frame carried from the root, worked out at the end of the
                 // row above (see below).
                 var tx = Simd.Ld(ref sh, Stx * lanes); var ty = Simd.Ld(ref sh, Sty * lanes); var tz = Simd.Ld(ref sh, Stz * lanes);
                 // A rest direction to turn (any component non-zero, by bits: no multiplies).
-                var restOk = ~Vector.AsVectorInt32(Vector.Equals((Vector.AsVectorUInt32(rx) | Vector.AsVectorUInt32(ry) | Vector.AsVectorUInt32(rz)) & new Vector<uint>(0x7fffffffu), Vector<uint>.Zero));
-                tx = Simd.Sel(restOk, tx, Simd.Sel(hasLen, ux0, zero));
-                ty = Simd.Sel(restOk, ty, Simd.Sel(hasLen, uy0, new V(-1f)));
-                tz = Simd.Sel(restOk, tz, Simd.Sel(hasLen, uz0, zero));
-                var okLen = Vector.GreaterThan(len, new V(1e-6f) * rl) & hasLen;
-                var dx = Simd.Sel(okLen, ux0, tx); var dy = Simd.Sel(okLen, uy0, ty); var dz = Simd.Sel(okLen, uz0, tz);
+                var restBits = (Vector.AsVectorUInt32(rx) | Vector.AsVectorUInt32(ry) | Vector.AsVectorUInt32(rz)) & new Vector<uint>(0x7fffffffu);
+                if (Vector.EqualsAny(restBits, Vector<uint>.Zero))
+                {
+                    var restOk = ~Vector.AsVectorInt32(Vector.Equals(restBits, Vector<uint>.Zero));
+                    var hasLen = Vector.GreaterThan(len, zero);
+                    tx = Simd.Sel(restOk, tx, Simd.Sel(hasLen, ux0, zero));
+                    ty = Simd.Sel(restOk, ty, Simd.Sel(hasLen, uy0, new V(-1f)));
+                    tz = Simd.Sel(restOk, tz, Simd.Sel(hasLen, uz0, zero));
+                }
+                // Every lane long enough (len > 0 follows from len² > 1e-30).
+                bool allOkLen = allClear && Vector.GreaterThanAll(len, new V(1e-6f) * rl);
+                V dx = ux0, dy = uy0, dz = uz0;
+                if (!allOkLen)
+                {
+                    var okLen = OkLen(len, rl);
+                    dx = Simd.Sel(okLen, ux0, tx); dy = Simd.Sel(okLen, uy0, ty); dz = Simd.Sel(okLen, uz0, tz);
+                }
                 // How far this segment turned since the substep's start (see BendSystem).
                 var ux = Simd.MulSub(new V(p.H), Simd.Ld(ref Vx, u), Simd.MulAdd(new V(p.H), Simd.Ld(ref Vx, up), Simd.Ld(ref sh, SDx * lanes)));
                 var uy = Simd.MulSub(new V(p.H), Simd.Ld(ref Vy, u), Simd.MulAdd(new V(p.H), Simd.Ld(ref Vy, up), Simd.Ld(ref sh, SDy * lanes)));
@@ -97,16 +115,20 @@ public sealed partial class FastBendSystem
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 V mx = zero, my = zero, mz = zero, ml = zero, cdx = zero, cdy = zero, cdz = zero;
-                var mOk = Vector<int>.Zero;
-                if (!Vector.EqualsAll(free, Vector<int>.Zero))
+                bool allMOk = false;
+                if (!noneFree)
                 {
                     // Where d = e/len: (u − (u·d)d)/len = (u − (u·e)/len² e)/len, whose u·e does not wait for the root.
                     var ue = Simd.MulAdd(uz, ez, Simd.MulAdd(uy, ey, ux * ex)) * inv2;
-                    var al = Simd.MulAdd(uz, dz, Simd.MulAdd(uy, dy, ux * dx));
-                    var byE = clear & okLen;
-                    var tcx = Simd.Sel(byE, Simd.NegMulAdd(ue, ex, ux) * inv, Simd.NegMulAdd(al, dx, ux) * inv);
-                    var tcy = Simd.Sel(byE, Simd.NegMulAdd(ue, ey, uy) * inv, Simd.NegMulAdd(al, dy, uy) * inv);
-                    var tcz = Simd.Sel(byE, Simd.NegMulAdd(ue, ez, uz) * inv, Simd.NegMulAdd(al, dz, uz) * inv);
+                    var tcx = Simd.NegMulAdd(ue, ex, ux) * inv; var tcy = Simd.NegMulAdd(ue, ey, uy) * inv; var tcz = Simd.NegMulAdd(ue, ez, uz) * inv;
+                    if (!allOkLen)
+                    {
+                        var byE = Vector.GreaterThan(len2, new V(1e-30f)) & OkLen(len, rl);
+                        var al = Simd.MulAdd(uz, dz, Simd.MulAdd(uy, dy, ux * dx));
+                        tcx = Simd.Sel(byE, tcx, Simd.NegMulAdd(al, dx, ux) * inv);
+                        tcy = Simd.Sel(byE, tcy, Simd.NegMulAdd(al, dy, uy) * inv);
+                        tcz = Simd.Sel(byE, tcz, Simd.NegMulAdd(al, dz, uz) * inv);
+                    }
                     // Target turned with the parent: Δt = w_p × t.
                     var wx = Simd.Ld(ref sh, Swx * lanes); var wy = Simd.Ld(ref sh, Swy * lanes); var wz = Simd.Ld(ref sh, Swz * lanes);
                     var ttx = Simd.MulSub(wy, tz, wz * ty); var tty = Simd.MulSub(wz, tx, wx * tz); var ttz = Simd.MulSub(wx, ty, wy * tx);
@@ -117,20 +139,45 @@ public sealed partial class FastBendSystem
                     mx = Simd.MulAdd(b, sx, Simd.MulAdd(a, ox, tx)); my = Simd.MulAdd(b, sy, Simd.MulAdd(a, oy, ty)); mz = Simd.MulAdd(b, sz, Simd.MulAdd(a, oz, tz));
                     var m2 = Simd.MulAdd(mz, mz, Simd.MulAdd(my, my, mx * mx));
                     ml = Vector.SquareRoot(m2);
-                    mOk = Vector.GreaterThan(ml, new V(1e-6f));
                     // 1/|m| as |m|/|m|², as 1/len above.
-                    var invM = ml * (one / Simd.Sel(mOk, m2, one));
-                    var ndx = Simd.Sel(mOk, mx * invM, tx); var ndy = Simd.Sel(mOk, my * invM, ty); var ndz = Simd.Sel(mOk, mz * invM, tz);
-                    dx = Simd.Sel(free, ndx, dx); dy = Simd.Sel(free, ndy, dy); dz = Simd.Sel(free, ndz, dz);
+                    allMOk = Vector.GreaterThanAll(ml, new V(1e-6f));
+                    if (allMOk)
+                    {
+                        var invM = ml * (one / m2);
+                        if (allFree) { dx = mx * invM; dy = my * invM; dz = mz * invM; }
+                        else
+                        {
+                            var free = ~Vector.Equals(m, zero);
+                            dx = Simd.Sel(free, mx * invM, dx); dy = Simd.Sel(free, my * invM, dy); dz = Simd.Sel(free, mz * invM, dz);
+                        }
+                    }
+                    else
+                    {
+                        var free = ~Vector.Equals(m, zero);
+                        var mOk = Vector.GreaterThan(ml, new V(1e-6f));
+                        var invM = ml * (one / Simd.Sel(mOk, m2, one));
+                        var ndx = Simd.Sel(mOk, mx * invM, tx); var ndy = Simd.Sel(mOk, my * invM, ty); var ndz = Simd.Sel(mOk, mz * invM, tz);
+                        dx = Simd.Sel(free, ndx, dx); dy = Simd.Sel(free, ndy, dy); dz = Simd.Sel(free, ndz, dz);
+                    }
                     var nx = Simd.MulAdd(dx, rl, px); var ny = Simd.MulAdd(dy, rl, py); var nz = Simd.MulAdd(dz, rl, pz);
-                    cdx = Simd.Sel(free, nx - x, zero); cdy = Simd.Sel(free, ny - y, zero); cdz = Simd.Sel(free, nz - z, zero);
+                    cdx = nx - x; cdy = ny - y; cdz = nz - z;
+                    if (!allFree)
+                    {
+                        var free = ~Vector.Equals(m, zero);
+                        cdx = Simd.Sel(free, cdx, zero); cdy = Simd.Sel(free, cdy, zero); cdz = Simd.Sel(free, cdz, zero);
+                    }
                 }
                 x += cdx; y += cdy; z += cdz;
                 Simd.St(ref X, u, x); Simd.St(ref Y, u, y); Simd.St(ref Z, u, z);
                 // The row above takes its kick now that this row's correction is known.
-                Kick(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? Vector<int>.Zero : ~Vector.Equals(Simd.Ld(ref M, up), zero),
-                    Simd.Ld(ref sh, SDx * lanes), Simd.Ld(ref sh, SDy * lanes), Simd.Ld(ref sh, SDz * lanes),
-                    cdx + Simd.Sel(free, new V(p.FallX), zero), cdy + Simd.Sel(free, new V(p.FallY), zero), cdz + Simd.Sel(free, new V(p.FallZ), zero));
+                V fallX = new(p.FallX), fallY = new(p.FallY), fallZ = new(p.FallZ);
+                if (!allFree)
+                {
+                    var free = ~Vector.Equals(m, zero);
+                    fallX = Simd.Sel(free, fallX, zero); fallY = Simd.Sel(free, fallY, zero); fallZ = Simd.Sel(free, fallZ, zero);
+                }
+                Kick(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? zero : Simd.Ld(ref M, up),
+                    Simd.Ld(ref sh, SDx * lanes), Simd.Ld(ref sh, SDy * lanes), Simd.Ld(ref sh, SDz * lanes), cdx + fallX, cdy + fallY, cdz + fallZ);
                 Simd.St(ref sh, SDx * lanes, cdx); Simd.St(ref sh, SDy * lanes, cdy); Simd.St(ref sh, SDz * lanes, cdz);
                 // This segment's turn over the substep so far, for its child.
                 ux += cdx; uy += cdy; uz += cdz;
@@ -139,12 +186,20 @@ public sealed partial class FastBendSystem
                 Simd.St(ref sh, Swz * lanes, Simd.MulSub(dx, uy, dy * ux) * inv);
                 // Frame: the smallest rotation taking t onto d, then the frame so far (identity if they are opposite).
                 // It is built from m and |m| (f ∝ (t × m, |m| + t·m)), not from d = m/|m|, and left unnormalised (below).
-                var byM = free & mOk;
-                var gx = Simd.Sel(byM, mx, dx); var gy = Simd.Sel(byM, my, dy); var gz = Simd.Sel(byM, mz, dz); var gl = Simd.Sel(byM, ml, one);
+                V gx = dx, gy = dy, gz = dz, gl = one;
+                if (allFree && allMOk) { gx = mx; gy = my; gz = mz; gl = ml; }
+                else if (!noneFree)
+                {
+                    var byM = ~Vector.Equals(m, zero) & Vector.GreaterThan(ml, new V(1e-6f));
+                    gx = Simd.Sel(byM, mx, dx); gy = Simd.Sel(byM, my, dy); gz = Simd.Sel(byM, mz, dz); gl = Simd.Sel(byM, ml, one);
+                }
                 var dot = Simd.MulAdd(tz, gz, Simd.MulAdd(ty, gy, tx * gx));
                 var fx = Simd.MulSub(ty, gz, tz * gy); var fy = Simd.MulSub(tz, gx, tx * gz); var fz = Simd.MulSub(tx, gy, ty * gx); var fw = gl + dot;
-                var flip = Vector.LessThan(dot, new V(-0.9999f) * gl);
-                fx = Simd.Sel(flip, zero, fx); fy = Simd.Sel(flip, zero, fy); fz = Simd.Sel(flip, zero, fz); fw = Simd.Sel(flip, one, fw);
+                if (Vector.LessThanAny(dot, new V(-0.9999f) * gl))
+                {
+                    var flip = Vector.LessThan(dot, new V(-0.9999f) * gl);
+                    fx = Simd.Sel(flip, zero, fx); fy = Simd.Sel(flip, zero, fy); fz = Simd.Sel(flip, zero, fz); fw = Simd.Sel(flip, one, fw);
+                }
                 var invF2 = one / Simd.MulAdd(fw, fw, Simd.MulAdd(fz, fz, Simd.MulAdd(fy, fy, fx * fx)));
                 var qx = Simd.Ld(ref sh, Sqx * lanes); var qy = Simd.Ld(ref sh, Sqy * lanes); var qz = Simd.Ld(ref sh, Sqz * lanes); var qw = Simd.Ld(ref sh, Sqw * lanes);
                 // The frame so far, Q = f∘q, left unnormalised (|Q|² = |f|² as q is a unit quaternion): the next target,
@@ -173,10 +228,14 @@ public sealed partial class FastBendSystem
         for (int h = 0; h < lanes; h += width)
         {
             ref float sh = ref Unsafe.Add(ref s, h);
-            Kick(ref Vx, ref Vy, ref Vz, in p, (nuint)((rows - 1) * lanes + h), ~Vector.Equals(Simd.Ld(ref M, (nuint)((rows - 1) * lanes + h)), zero),
+            Kick(ref Vx, ref Vy, ref Vz, in p, (nuint)((rows - 1) * lanes + h), Simd.Ld(ref M, (nuint)((rows - 1) * lanes + h)),
                 Simd.Ld(ref sh, SDx * lanes), Simd.Ld(ref sh, SDy * lanes), Simd.Ld(ref sh, SDz * lanes), zero, zero, zero);
         }
     }
+
+    /// <summary>The lanes whose segment is long enough to give a direction: len &gt; 10⁻⁶·rest length, and len &gt; 0.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector<int> OkLen(V len, V rl) => Vector.GreaterThan(len, new V(1e-6f) * rl) & Vector.GreaterThan(len, V.Zero);
 
     /// <summary>
     /// v turned by the unit quaternion q: v + 2w(q×v) + 2q×(q×v), as v + w·c + q×c with c = 2q×v (the doubling by adds).
@@ -190,23 +249,24 @@ public sealed partial class FastBendSystem
         tz = Simd.NegMulAdd(qy, cx, Simd.MulAdd(qx, cy, Simd.MulAdd(qw, cz, rz)));
     }
 
-    /// <summary>v += (Δ − s·next) / h on the free lanes of row r, then clamped to the speed limit (the sweep writes velocities last).</summary>
+    /// <summary>v += (Δ − s·next) / h on the free lanes (m: inverse masses) of row r, then clamped to the speed limit (the sweep writes velocities last).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Kick(ref float Vx, ref float Vy, ref float Vz, in SweepParams p, nuint r, Vector<int> free, V dx, V dy, V dz, V nx, V ny, V nz)
+    private static void Kick(ref float Vx, ref float Vy, ref float Vz, in SweepParams p, nuint r, V m, V dx, V dy, V dz, V nx, V ny, V nz)
     {
         var vx = Simd.Ld(ref Vx, r); var vy = Simd.Ld(ref Vy, r); var vz = Simd.Ld(ref Vz, r);
         var wx = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nx, dx), new V(p.InvH), vx); var wy = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), ny, dy), new V(p.InvH), vy);
         var wz = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nz, dz), new V(p.InvH), vz);
         // Squared speeds compared, the root taken only where a lane is over the limit.
         var speedSq = Simd.MulAdd(wz, wz, Simd.MulAdd(wy, wy, wx * wx));
-        var over = Vector.GreaterThan(speedSq, new V(p.MaxSpeedSq));
-        if (!Vector.EqualsAll(over, Vector<int>.Zero))
+        if (Vector.GreaterThanAny(speedSq, new V(p.MaxSpeedSq)))
         {
+            var over = Vector.GreaterThan(speedSq, new V(p.MaxSpeedSq));
             var f = new V(p.MaxSpeed) / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
             wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
         }
-        Simd.St(ref Vx, r, Simd.Sel(free, wx, vx));
-        Simd.St(ref Vy, r, Simd.Sel(free, wy, vy));
-        Simd.St(ref Vz, r, Simd.Sel(free, wz, vz));
+        if (Vector.EqualsAny(m, V.Zero)) { var free = ~Vector.Equals(m, V.Zero); wx = Simd.Sel(free, wx, vx); wy = Simd.Sel(free, wy, vy); wz = Simd.Sel(free, wz, vz); }
+        Simd.St(ref Vx, r, wx);
+        Simd.St(ref Vy, r, wy);
+        Simd.St(ref Vz, r, wz);
     }
 }
