@@ -436,10 +436,16 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
                 var recorded = Vector512.Load(clear + RecordD);
                 // maxps: squared below, so ±0 alike.
                 var c = Avx512F.Max(recorded - farDistance, Vector512<float>.Zero) * share;
+                ulong isFar = Vector512.ExtractMostSignificantBits(Vector512.LessThan(m2, c * c));
+                if (isFar == 0xFFFF)
+                {
+                    // Far in all 16 lanes (both columns): the walk never reads this row's bounds, so no root for them.
+                    fa |= 1UL << k; fb |= 1UL << k;
+                    continue;
+                }
                 var m = Vector512.Sqrt(m2) * inverseShare;
                 var lw = recorded - m;
                 lower[k] = lw; move[k] = m;
-                ulong isFar = Vector512.ExtractMostSignificantBits(Vector512.LessThan(m2, c * c));
                 ulong isAbove = Vector512.ExtractMostSignificantBits(Vector512.GreaterThanOrEqual(lw, margin)) & ~isFar;
                 // All 8 lanes of a column: (mask + 1) >> 8 is 1 for 0xFF, else 0.
                 fa |= ((isFar & 0xFF) + 1 >> 8) << k; fb |= ((isFar >> 8) + 1 >> 8) << k;
