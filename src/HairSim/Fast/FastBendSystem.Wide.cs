@@ -257,7 +257,7 @@ public sealed partial class FastBendSystem
 
     /// <summary>
     /// Row r as <see cref="FastIntegrateSystem"/>'s 16-lane kernel steps it (the same operations in the same order): its
-    /// velocity stored and returned, its position (x, y, z in) moved by h·v on the free lanes.
+    /// velocity stored and returned, its position (x, y, z in) moved by h·v on the free lanes (m: the row's inverse masses).
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Integrate16(ref float Vx, ref float Vy, ref float Vz, nuint r, V m, bool nonePinned, in SweepParams p,
@@ -290,7 +290,7 @@ public sealed partial class FastBendSystem
         St16(ref Vx, r, vx); St16(ref Vy, r, vy); St16(ref Vz, r, vz);
     }
 
-    /// <summary>v += (Δ − s·next) / h on the free lanes of row r.</summary>
+    /// <summary>v += (Δ − s·next) / h on the free lanes (m: inverse masses) of row r.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Kick16(ref float Vx, ref float Vy, ref float Vz, in SweepParams p, nuint r, V m, V dx, V dy, V dz, V nx, V ny, V nz)
     {
