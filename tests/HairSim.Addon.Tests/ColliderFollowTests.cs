@@ -152,17 +152,14 @@ public class ColliderFollowTests
             return Godot(spin, new Vector3(1.7f), target + new Vector3(0.15f * (1f - s), 0f, 0f));
         }
         float deepest = 0f, nearest = float.MaxValue;
-        int allocatingUpdates = 0;
-        long allocated = 0;
+        var allocations = new UpdateAllocations();
         for (int f = 0; f <= 150; f++)
         {
             var shoulder = ShoulderAt(f);
-            long before = GC.GetAllocatedBytesForCurrentThread();
+            allocations.Begin();
             Assert.True(ColliderFollowMath.TryFrame(shoulder, out var frame, out _));
             collider.Placement = frame;
-            // One-time set-up may allocate in one update, a cost per update in every one (see PrimitiveFollowTests).
-            long bytes = GC.GetAllocatedBytesForCurrentThread() - before;
-            if (bytes != 0) { allocatingUpdates++; allocated += bytes; }
+            allocations.End();
             sim.Step(1f / 60f);
             var centre = new Vector3(shoulder.M41, shoulder.M42, shoulder.M43);
             for (int i = 0; i < w.ParticleCount; i++)
@@ -172,7 +169,7 @@ public class ColliderFollowTests
                 if (f >= 60) { deepest = MathF.Max(deepest, 0.02f - r); nearest = MathF.Min(nearest, r); }
             }
         }
-        Assert.True(allocatingUpdates <= 1, $"{allocatingUpdates} of 151 updates allocated ({allocated} bytes in all)");
+        allocations.AssertNonePerUpdate();
         Assert.Equal(0, w.CountNonFinite());
         Assert.True(nearest < 0.023f, $"no hair came within 3 mm of the ball (nearest {nearest * 1000:F1} mm from its centre): the test sees nothing");
         Assert.True(deepest < 0.001f, $"a particle is {deepest * 1000:F2} mm inside the ball the bone carried in");

@@ -90,18 +90,13 @@ public class PrimitiveFollowTests
         int index = scene.Colliders.Count - 1, revision = scene.Revision;
         var pipeline = sim.Pipeline;
         float deepest = 0f, nearest = float.MaxValue;
-        int allocatingUpdates = 0;
-        long allocated = 0;
+        var allocations = new UpdateAllocations();
         for (int f = 0; f <= 100; f++)
         {
-            long before = GC.GetAllocatedBytesForCurrentThread();
+            allocations.Begin();
             var capsule = ColliderFollowMath.Place(shape, offset, BoneAt(f));
             scene.SetCollider(index, capsule);
-            // One-time set-up may allocate in one update (a type or static first used here, or not, depending on which
-            // test of the run got there first: 248 bytes, seen on the first update and, rarely, on a later one); a
-            // cost per update allocates in every update.
-            long bytes = GC.GetAllocatedBytesForCurrentThread() - before;
-            if (bytes != 0) { allocatingUpdates++; allocated += bytes; }
+            allocations.End();
             sim.Step(1f / 60f);
             if (f < 40) continue;
             for (int i = 0; i < w.ParticleCount; i++)
@@ -114,7 +109,7 @@ public class PrimitiveFollowTests
                 nearest = MathF.Min(nearest, Vector3.Distance(p, capsule.Center + t * axis) - capsule.Radius);
             }
         }
-        Assert.True(allocatingUpdates <= 1, $"{allocatingUpdates} of 101 updates allocated ({allocated} bytes in all)");
+        allocations.AssertNonePerUpdate();
         Assert.Same(pipeline, sim.Pipeline);
         Assert.Equal(revision, scene.Revision);
         Assert.Equal(0, w.CountNonFinite());

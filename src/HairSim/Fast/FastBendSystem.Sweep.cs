@@ -147,13 +147,13 @@ public sealed partial class FastBendSystem
                         if (allFree) { dx = mx * invM; dy = my * invM; dz = mz * invM; }
                         else
                         {
-                            var free = ~Vector.Equals(m, zero);
+                            var free = Free(m);
                             dx = Simd.Sel(free, mx * invM, dx); dy = Simd.Sel(free, my * invM, dy); dz = Simd.Sel(free, mz * invM, dz);
                         }
                     }
                     else
                     {
-                        var free = ~Vector.Equals(m, zero);
+                        var free = Free(m);
                         var mOk = Vector.GreaterThan(ml, new V(1e-6f));
                         var invM = ml * (one / Simd.Sel(mOk, m2, one));
                         var ndx = Simd.Sel(mOk, mx * invM, tx); var ndy = Simd.Sel(mOk, my * invM, ty); var ndz = Simd.Sel(mOk, mz * invM, tz);
@@ -163,7 +163,7 @@ public sealed partial class FastBendSystem
                     cdx = nx - x; cdy = ny - y; cdz = nz - z;
                     if (!allFree)
                     {
-                        var free = ~Vector.Equals(m, zero);
+                        var free = Free(m);
                         cdx = Simd.Sel(free, cdx, zero); cdy = Simd.Sel(free, cdy, zero); cdz = Simd.Sel(free, cdz, zero);
                     }
                 }
@@ -173,7 +173,7 @@ public sealed partial class FastBendSystem
                 V fallX = new(p.FallX), fallY = new(p.FallY), fallZ = new(p.FallZ);
                 if (!allFree)
                 {
-                    var free = ~Vector.Equals(m, zero);
+                    var free = Free(m);
                     fallX = Simd.Sel(free, fallX, zero); fallY = Simd.Sel(free, fallY, zero); fallZ = Simd.Sel(free, fallZ, zero);
                 }
                 Kick(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? zero : Simd.Ld(ref M, up),
@@ -190,7 +190,7 @@ public sealed partial class FastBendSystem
                 if (allFree && allMOk) { gx = mx; gy = my; gz = mz; gl = ml; }
                 else if (!noneFree)
                 {
-                    var byM = ~Vector.Equals(m, zero) & Vector.GreaterThan(ml, new V(1e-6f));
+                    var byM = Free(m) & Vector.GreaterThan(ml, new V(1e-6f));
                     gx = Simd.Sel(byM, mx, dx); gy = Simd.Sel(byM, my, dy); gz = Simd.Sel(byM, mz, dz); gl = Simd.Sel(byM, ml, one);
                 }
                 var dot = Simd.MulAdd(tz, gz, Simd.MulAdd(ty, gy, tx * gx));
@@ -233,6 +233,10 @@ public sealed partial class FastBendSystem
         }
     }
 
+    /// <summary>The free lanes (inverse mass m ≠ 0): the mask the rare paths select by.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector<int> Free(V m) => ~Vector.Equals(m, V.Zero);
+
     /// <summary>The lanes whose segment is long enough to give a direction: len &gt; 10⁻⁶·rest length, and len &gt; 0.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static Vector<int> OkLen(V len, V rl) => Vector.GreaterThan(len, new V(1e-6f) * rl) & Vector.GreaterThan(len, V.Zero);
@@ -264,7 +268,7 @@ public sealed partial class FastBendSystem
             var f = new V(p.MaxSpeed) / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
             wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
         }
-        if (Vector.EqualsAny(m, V.Zero)) { var free = ~Vector.Equals(m, V.Zero); wx = Simd.Sel(free, wx, vx); wy = Simd.Sel(free, wy, vy); wz = Simd.Sel(free, wz, vz); }
+        if (Vector.EqualsAny(m, V.Zero)) { var free = Free(m); wx = Simd.Sel(free, wx, vx); wy = Simd.Sel(free, wy, vy); wz = Simd.Sel(free, wz, vz); }
         Simd.St(ref Vx, r, wx);
         Simd.St(ref Vy, r, wy);
         Simd.St(ref Vz, r, wz);

@@ -161,13 +161,13 @@ public sealed partial class FastBendSystem
                         if (allFree) { dx = mx * invM; dy = my * invM; dz = mz * invM; }
                         else
                         {
-                            var free = ~Vector512.Equals(m, zero);
+                            var free = Free16(m);
                             dx = Sel16(free, mx * invM, dx); dy = Sel16(free, my * invM, dy); dz = Sel16(free, mz * invM, dz);
                         }
                     }
                     else
                     {
-                        var free = ~Vector512.Equals(m, zero);
+                        var free = Free16(m);
                         var mOk = Vector512.GreaterThan(ml, Vector512.Create(1e-6f));
                         var invM = ml * (one / Sel16(mOk, m2, one));
                         var ndx = Sel16(mOk, mx * invM, tx); var ndy = Sel16(mOk, my * invM, ty); var ndz = Sel16(mOk, mz * invM, tz);
@@ -175,7 +175,7 @@ public sealed partial class FastBendSystem
                     }
                     var nx = Fma(dx, rl, px); var ny = Fma(dy, rl, py); var nz = Fma(dz, rl, pz);
                     cdx = nx - x; cdy = ny - y; cdz = nz - z;
-                    if (!allFree) { var free = ~Vector512.Equals(m, zero); cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
+                    if (!allFree) { var free = Free16(m); cdx = Sel16(free, cdx, zero); cdy = Sel16(free, cdy, zero); cdz = Sel16(free, cdz, zero); }
                 }
                 x += cdx; y += cdy; z += cdz;
                 St16(ref X, u, x); St16(ref Y, u, y); St16(ref Z, u, z);
@@ -183,7 +183,7 @@ public sealed partial class FastBendSystem
                 V fallX = Vector512.Create(p.FallX), fallY = Vector512.Create(p.FallY), fallZ = Vector512.Create(p.FallZ);
                 if (!allFree)
                 {
-                    var free = ~Vector512.Equals(m, zero);
+                    var free = Free16(m);
                     fallX = Sel16(free, fallX, zero); fallY = Sel16(free, fallY, zero); fallZ = Sel16(free, fallZ, zero);
                 }
                 Kick16(ref Vx, ref Vy, ref Vz, in p, up, k == 1 ? zero : Ld16(ref M, up),
@@ -200,7 +200,7 @@ public sealed partial class FastBendSystem
                 if (allFree && allMOk) { gx = mx; gy = my; gz = mz; gl = ml; }
                 else if (!noneFree)
                 {
-                    var byM = ~Vector512.Equals(m, zero) & Vector512.GreaterThan(ml, Vector512.Create(1e-6f));
+                    var byM = Free16(m) & Vector512.GreaterThan(ml, Vector512.Create(1e-6f));
                     gx = Sel16(byM, mx, dx); gy = Sel16(byM, my, dy); gz = Sel16(byM, mz, dz); gl = Sel16(byM, ml, one);
                 }
                 var dot = Fma(tz, gz, Fma(ty, gy, tx * gx));
@@ -304,7 +304,7 @@ public sealed partial class FastBendSystem
             var f = Vector512.Create(p.MaxSpeed) / Sel16(over, Vector512.Sqrt(speedSq), V.One);
             wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
         }
-        if (Vector512.EqualsAny(m, V.Zero)) { var free = ~Vector512.Equals(m, V.Zero); wx = Sel16(free, wx, vx); wy = Sel16(free, wy, vy); wz = Sel16(free, wz, vz); }
+        if (Vector512.EqualsAny(m, V.Zero)) { var free = Free16(m); wx = Sel16(free, wx, vx); wy = Sel16(free, wy, vy); wz = Sel16(free, wz, vz); }
         St16(ref Vx, r, wx);
         St16(ref Vy, r, wy);
         St16(ref Vz, r, wz);
@@ -319,6 +319,10 @@ public sealed partial class FastBendSystem
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static V Fms(V a, V b, V c) => Simd.MulSub(a, b, c);
+
+    /// <summary>The free lanes (inverse mass m ≠ 0): the mask the rare paths select by.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static V Free16(V m) => ~Vector512.Equals(m, V.Zero);
 
     /// <summary>The lanes whose segment is long enough to give a direction: len &gt; 10⁻⁶·rest length, and len &gt; 0.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
