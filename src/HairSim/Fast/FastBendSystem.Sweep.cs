@@ -109,9 +109,10 @@ public sealed partial class FastBendSystem
                     dx = Simd.Sel(okLen, ux0, tx); dy = Simd.Sel(okLen, uy0, ty); dz = Simd.Sel(okLen, uz0, tz);
                 }
                 // How far this segment turned since the substep's start (see BendSystem).
-                var ux = Simd.MulSub(new V(p.H), Simd.Ld(ref Vx, u), Simd.MulAdd(new V(p.H), Simd.Ld(ref Vx, up), Simd.Ld(ref sh, SDx * lanes)));
-                var uy = Simd.MulSub(new V(p.H), Simd.Ld(ref Vy, u), Simd.MulAdd(new V(p.H), Simd.Ld(ref Vy, up), Simd.Ld(ref sh, SDy * lanes)));
-                var uz = Simd.MulSub(new V(p.H), Simd.Ld(ref Vz, u), Simd.MulAdd(new V(p.H), Simd.Ld(ref Vz, up), Simd.Ld(ref sh, SDz * lanes)));
+                // h·(v − v_parent) − the parent's correction: one multiply a component (the sweep is bound by those).
+                var ux = Simd.MulSub(new V(p.H), Simd.Ld(ref Vx, u) - Simd.Ld(ref Vx, up), Simd.Ld(ref sh, SDx * lanes));
+                var uy = Simd.MulSub(new V(p.H), Simd.Ld(ref Vy, u) - Simd.Ld(ref Vy, up), Simd.Ld(ref sh, SDy * lanes));
+                var uz = Simd.MulSub(new V(p.H), Simd.Ld(ref Vz, u) - Simd.Ld(ref Vz, up), Simd.Ld(ref sh, SDz * lanes));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 V mx = zero, my = zero, mz = zero, ml = zero, cdx = zero, cdy = zero, cdz = zero;
@@ -260,13 +261,16 @@ public sealed partial class FastBendSystem
         var vx = Simd.Ld(ref Vx, r); var vy = Simd.Ld(ref Vy, r); var vz = Simd.Ld(ref Vz, r);
         var wx = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nx, dx), new V(p.InvH), vx); var wy = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), ny, dy), new V(p.InvH), vy);
         var wz = Simd.MulAdd(Simd.NegMulAdd(new V(p.Reaction), nz, dz), new V(p.InvH), vz);
-        // Squared speeds compared, the root taken only where a lane is over the limit.
-        var speedSq = Simd.MulAdd(wz, wz, Simd.MulAdd(wy, wy, wx * wx));
-        if (Vector.GreaterThanAny(speedSq, new V(p.MaxSpeedSq)))
+        // Squared speeds compared where a component is past the bound, the root taken only where a lane is over the limit.
+        if (!Simd.AllWithin(wx, wy, wz, new Vector<uint>(p.SpeedBound)))
         {
-            var over = Vector.GreaterThan(speedSq, new V(p.MaxSpeedSq));
-            var f = new V(p.MaxSpeed) / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
-            wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
+            var speedSq = Simd.MulAdd(wz, wz, Simd.MulAdd(wy, wy, wx * wx));
+            if (Vector.GreaterThanAny(speedSq, new V(p.MaxSpeedSq)))
+            {
+                var over = Vector.GreaterThan(speedSq, new V(p.MaxSpeedSq));
+                var f = new V(p.MaxSpeed) / Simd.Sel(over, Vector.SquareRoot(speedSq), V.One);
+                wx = Simd.Sel(over, wx * f, wx); wy = Simd.Sel(over, wy * f, wy); wz = Simd.Sel(over, wz * f, wz);
+            }
         }
         if (Vector.EqualsAny(m, V.Zero)) { var free = Free(m); wx = Simd.Sel(free, wx, vx); wy = Simd.Sel(free, wy, vy); wz = Simd.Sel(free, wz, vz); }
         Simd.St(ref Vx, r, wx);

@@ -125,9 +125,10 @@ public sealed partial class FastBendSystem
                     dx = Sel16(okLen, ux0, tx); dy = Sel16(okLen, uy0, ty); dz = Sel16(okLen, uz0, tz);
                 }
                 // How far this segment turned since the substep's start (see BendSystem).
-                var ux = Fms(Vector512.Create(p.H), vux, Fma(Vector512.Create(p.H), Ld16(ref Vx, up), Ld16(ref sh, SDx * lanes)));
-                var uy = Fms(Vector512.Create(p.H), vuy, Fma(Vector512.Create(p.H), Ld16(ref Vy, up), Ld16(ref sh, SDy * lanes)));
-                var uz = Fms(Vector512.Create(p.H), vuz, Fma(Vector512.Create(p.H), Ld16(ref Vz, up), Ld16(ref sh, SDz * lanes)));
+                // h·(v − v_parent) − the parent's correction: one multiply a component (the sweep is bound by those).
+                var ux = Fms(Vector512.Create(p.H), vux - Ld16(ref Vx, up), Ld16(ref sh, SDx * lanes));
+                var uy = Fms(Vector512.Create(p.H), vuy - Ld16(ref Vy, up), Ld16(ref sh, SDy * lanes));
+                var uz = Fms(Vector512.Create(p.H), vuz - Ld16(ref Vz, up), Ld16(ref sh, SDz * lanes));
                 // A row pinned in every lane (each strand's second particle, the rows past a cut) does not move: its
                 // joint's spring m and the target's turn are not needed, only the frame it hands on (taken from d).
                 V mx = zero, my = zero, mz = zero, ml = zero;
@@ -267,12 +268,16 @@ public sealed partial class FastBendSystem
         var keep = Vector512.Create(p.Keep);
         var nx = (ox + Vector512.Create(p.GravityStepX)) * keep; var ny = (oy + Vector512.Create(p.GravityStepY)) * keep;
         var nz = (oz + Vector512.Create(p.GravityStepZ)) * keep;
-        var spSq = nx * nx + ny * ny + nz * nz;
-        if (Vector512.GreaterThanAny(spSq, Vector512.Create(p.MaxSpeedSq)))
+        // Every component within the bound (the common row): no lane over the limit, no squares needed.
+        if (!Simd.AllWithin(nx, ny, nz, Vector512.Create(p.SpeedBound)))
         {
-            var over = Vector512.GreaterThan(spSq, Vector512.Create(p.MaxSpeedSq));
-            var f = Vector512.ConditionalSelect(over, Vector512.Create(p.MaxSpeed) / Vector512.Sqrt(spSq), V.One);
-            nx *= f; ny *= f; nz *= f;
+            var spSq = nx * nx + ny * ny + nz * nz;
+            if (Vector512.GreaterThanAny(spSq, Vector512.Create(p.MaxSpeedSq)))
+            {
+                var over = Vector512.GreaterThan(spSq, Vector512.Create(p.MaxSpeedSq));
+                var f = Vector512.ConditionalSelect(over, Vector512.Create(p.MaxSpeed) / Vector512.Sqrt(spSq), V.One);
+                nx *= f; ny *= f; nz *= f;
+            }
         }
         var h = Vector512.Create(p.H);
         if (nonePinned)
@@ -296,13 +301,16 @@ public sealed partial class FastBendSystem
     {
         var vx = Ld16(ref Vx, r); var vy = Ld16(ref Vy, r); var vz = Ld16(ref Vz, r);
         var wx = Fma(Fnma(Vector512.Create(p.Reaction), nx, dx), Vector512.Create(p.InvH), vx); var wy = Fma(Fnma(Vector512.Create(p.Reaction), ny, dy), Vector512.Create(p.InvH), vy); var wz = Fma(Fnma(Vector512.Create(p.Reaction), nz, dz), Vector512.Create(p.InvH), vz);
-        // Squared speeds compared, the root taken only where a lane is over the limit.
-        var speedSq = Fma(wz, wz, Fma(wy, wy, wx * wx));
-        if (Vector512.GreaterThanAny(speedSq, Vector512.Create(p.MaxSpeedSq)))
+        // Squared speeds compared where a component is past the bound, the root taken only where a lane is over the limit.
+        if (!Simd.AllWithin(wx, wy, wz, Vector512.Create(p.SpeedBound)))
         {
-            var over = Vector512.GreaterThan(speedSq, Vector512.Create(p.MaxSpeedSq));
-            var f = Vector512.Create(p.MaxSpeed) / Sel16(over, Vector512.Sqrt(speedSq), V.One);
-            wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
+            var speedSq = Fma(wz, wz, Fma(wy, wy, wx * wx));
+            if (Vector512.GreaterThanAny(speedSq, Vector512.Create(p.MaxSpeedSq)))
+            {
+                var over = Vector512.GreaterThan(speedSq, Vector512.Create(p.MaxSpeedSq));
+                var f = Vector512.Create(p.MaxSpeed) / Sel16(over, Vector512.Sqrt(speedSq), V.One);
+                wx = Sel16(over, wx * f, wx); wy = Sel16(over, wy * f, wy); wz = Sel16(over, wz * f, wz);
+            }
         }
         if (Vector512.EqualsAny(m, V.Zero)) { var free = Free16(m); wx = Sel16(free, wx, vx); wy = Sel16(free, wy, vy); wz = Sel16(free, wz, vz); }
         St16(ref Vx, r, wx);

@@ -228,6 +228,8 @@ public sealed partial class FastBendSystem : IHairSystem
         public readonly float H, InvH, Reaction, FallX, FallY, FallZ;
         /// <summary>The speed limit (m/s) the kick clamps velocities to; +∞ when off.</summary>
         public readonly float MaxSpeed, MaxSpeedSq;
+        /// <summary>Velocities within this in every component are under the limit (<see cref="Simd.SpeedBound"/>).</summary>
+        public readonly uint SpeedBound;
         /// <summary>Integration's velocity keep per substep and gravity × h (for the sweep that integrates each row first, <see cref="Fused"/>).</summary>
         public readonly float Keep, GravityStepX, GravityStepY, GravityStepZ;
         public readonly float Qx, Qy, Qz, Qw;
@@ -254,6 +256,7 @@ public sealed partial class FastBendSystem : IHairSystem
             FallX = st.Gravity.X * h * h * kappa; FallY = st.Gravity.Y * h * h * kappa; FallZ = st.Gravity.Z * h * h * kappa;
             MaxSpeed = st.MaxSpeed > 0f ? st.MaxSpeed : float.PositiveInfinity;
             MaxSpeedSq = MaxSpeed * MaxSpeed;
+            SpeedBound = Simd.SpeedBound(MaxSpeed);
             var q = ctx.HeadAt(substep).Rotation;
             Qx = q.X; Qy = q.Y; Qz = q.Z; Qw = q.W;
             Ox = ox; Oy = oy; Oz = oz; Ovx = ovx; Ovy = ovy; Ovz = ovz; Om = om; Ol = ol;

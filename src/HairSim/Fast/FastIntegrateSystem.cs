@@ -56,6 +56,8 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
     {
         private readonly Vector<float> _h, _gx, _gy, _gz, _keep, _maxSpeed, _maxSpeedSq;
         private readonly Vector512<float> _h16, _gx16, _gy16, _gz16, _keep16, _maxSpeed16, _maxSpeedSq16;
+        private readonly Vector<uint> _speedBound;
+        private readonly Vector512<uint> _speedBound16;
         private readonly bool _limit;
 
         public Kernel(float h, Vector3 gravityStep, float keep, float maxSpeed)
@@ -64,6 +66,7 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
             _keep = new(keep); _maxSpeed = new(maxSpeed); _maxSpeedSq = new(maxSpeed * maxSpeed); _limit = maxSpeed > 0f;
             _h16 = Vector512.Create(h); _gx16 = Vector512.Create(gravityStep.X); _gy16 = Vector512.Create(gravityStep.Y); _gz16 = Vector512.Create(gravityStep.Z);
             _keep16 = Vector512.Create(keep); _maxSpeed16 = Vector512.Create(maxSpeed); _maxSpeedSq16 = Vector512.Create(maxSpeed * maxSpeed);
+            _speedBound = new(Simd.SpeedBound(maxSpeed)); _speedBound16 = Vector512.Create(Simd.SpeedBound(maxSpeed));
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -73,7 +76,7 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
             var pinned = Vector.Equals(Simd.Ld(ref invMass, 0), Vector<float>.Zero);
             var ox = Simd.Ld(ref vx, 0); var oy = Simd.Ld(ref vy, 0); var oz = Simd.Ld(ref vz, 0);
             var x = (ox + _gx) * _keep; var y = (oy + _gy) * _keep; var z = (oz + _gz) * _keep;
-            if (_limit)
+            if (_limit && !Simd.AllWithin(x, y, z, _speedBound))
             {
                 // Squared speeds compared (as the bend sweep's kick does), the root taken only where a lane is over.
                 var spSq = x * x + y * y + z * z;
@@ -101,7 +104,7 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
             var pinned = Vector512.Equals(Vector512.LoadUnsafe(ref invMass), Vector512<float>.Zero);
             var ox = Vector512.LoadUnsafe(ref vx); var oy = Vector512.LoadUnsafe(ref vy); var oz = Vector512.LoadUnsafe(ref vz);
             var x = (ox + _gx16) * keep; var y = (oy + _gy16) * keep; var z = (oz + _gz16) * keep;
-            if (_limit)
+            if (_limit && !Simd.AllWithin(x, y, z, _speedBound16))
             {
                 var spSq = x * x + y * y + z * z;
                 var over = Vector512.GreaterThan(spSq, _maxSpeedSq16);

@@ -52,6 +52,28 @@ internal static class Simd
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector512<uint> FiniteProbe(Vector512<float> v) => v.AsUInt32() << 1;
 
+    /// <summary>
+    /// Whether |x|, |y| and |z| are at most the bound whose <see cref="FiniteProbe"/> is <paramref name="boundProbe"/>, in
+    /// every lane (false for NaN): the probes order magnitudes as the floats do, so an integer maximum and one compare
+    /// decide what three squares and their sum would (see <see cref="SpeedBound"/>).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static bool AllWithin(Vector512<float> x, Vector512<float> y, Vector512<float> z, Vector512<uint> boundProbe) =>
+        Vector512.LessThanOrEqualAll(Vector512.Max(Vector512.Max(FiniteProbe(x), FiniteProbe(y)), FiniteProbe(z)), boundProbe);
+
+    /// <summary><see cref="AllWithin(Vector512{float}, Vector512{float}, Vector512{float}, Vector512{uint})"/> on 8-lane vectors.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static bool AllWithin(Vector<float> x, Vector<float> y, Vector<float> z, Vector<uint> boundProbe) =>
+        Vector.LessThanOrEqualAll(Vector.Max(Vector.Max(Vector.AsVectorUInt32(x) << 1, Vector.AsVectorUInt32(y) << 1), Vector.AsVectorUInt32(z) << 1), boundProbe);
+
+    /// <summary>
+    /// The <see cref="FiniteProbe"/> of a per-component bound under which no velocity can be over the speed limit
+    /// <paramref name="maxSpeed"/> (+∞ when off): 0.57 · limit, so three squares and their sum stay below the limit's square
+    /// (3 · 0.57² ≈ 0.975, with room for the roundings). A speed check that passes it skips its squares; one that does not
+    /// takes the exact test, so the bits are those of the exact test alone.
+    /// </summary>
+    public static uint SpeedBound(float maxSpeed) => BitConverter.SingleToUInt32Bits(0.57f * maxSpeed) << 1;
+
     /// <summary>Whether every value whose <see cref="FiniteProbe"/> went into the maximum <paramref name="probes"/> was finite.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static bool AllFinite(Vector512<uint> probes) => Vector512.LessThanAll(probes, Vector512.Create(0xFF000000u));
