@@ -82,6 +82,19 @@ public sealed class HairPipeline
     /// <summary>Whether the last frame ran on chunks with the integration taken into the bend sweep (<see cref="FuseChunkIntegration"/>).</summary>
     internal bool LastFrameIntegratedInSweep => _chunkFrame && _chunks!.IntegratesInSweep;
 
+    /// <summary>
+    /// On chunks, the bend sweep tests each row it finishes against the ellipsoid's far sphere, and the collision just
+    /// after it takes only the rows with a lane inside (default on; the same bits). Exists to measure and test the two against each other.
+    /// </summary>
+    internal bool FuseChunkFarRows
+    {
+        get => _chunks?.FuseFarRows ?? false;
+        set { if (_chunks != null) _chunks.FuseFarRows = value; }
+    }
+
+    /// <summary>Whether the last frame ran on chunks whose collision took the sweep's far rows (<see cref="FuseChunkFarRows"/>).</summary>
+    internal bool LastFrameTestedFarRowsInSweep => _chunkFrame && _chunks!.TestsFarRowsInSweep;
+
     /// <summary>Whether frames take the chunked path: <see cref="UseStrandChunks"/>, the fast path on AVX-512, and every substep system able to run on chunks.</summary>
     public bool UsesStrandChunks => UseStrandChunks && _chunks != null;
 

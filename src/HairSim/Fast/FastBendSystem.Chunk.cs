@@ -27,6 +27,9 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
     /// </summary>
     internal bool FuseIntegrate(bool wanted) => _fuseIntegrate = wanted && _chunkActive;
 
+    /// <summary>Whether this frame's chunks are swept (the rest-shape model): set by <see cref="IStrandChunkSystem.BeginChunkFrame"/>.</summary>
+    internal bool SweepsChunks => _chunkActive;
+
     // This frame's settings, for PrepareChunk (which gets no context).
     private float _chunkSag, _chunkH, _chunkZeta;
     private bool _chunkActive;
@@ -113,7 +116,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
             t.Offset(StrandChunk.X), t.Offset(StrandChunk.Y), t.Offset(StrandChunk.Z),
             t.Offset(StrandChunk.VelX), t.Offset(StrandChunk.VelY), t.Offset(StrandChunk.VelZ),
             t.Offset(StrandChunk.InvMass), t.Offset(StrandChunk.RestLength),
-            0, cells, 2 * cells, 3 * cells, 4 * cells, chunk.Prefetch);
+            0, cells, 2 * cells, 3 * cells, 4 * cells, chunk.Prefetch, chunk.FarRows);
         ref float rest = ref _chunkBend[ChunkBendFields * chunk.Firsts[0]];
         // Rows past every lane's cut are left out (StrandChunk.LiveRows): no row before them reads them.
         if (_fuseIntegrate) Sweep16<Fused>(ref t.Data[0], ref rest, chunk.LiveRows, in p);

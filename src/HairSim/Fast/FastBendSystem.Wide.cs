@@ -67,6 +67,11 @@ public sealed partial class FastBendSystem
                 Ld16(ref rest, p.Orx + lanes + h), Ld16(ref rest, p.Ory + lanes + h), Ld16(ref rest, p.Orz + lanes + h), out var tx1, out var ty1, out var tz1);
             St16(ref sh, Stx * lanes, tx1); St16(ref sh, Sty * lanes, ty1); St16(ref sh, Stz * lanes, tz1);
         }
+        // Rows with a lane inside the collider's far sphere, for the collision just after (StrandChunk.FarRows): the
+        // root row as it stands now (nothing below moves it), each later row once its position is final.
+        ulong far = 0;
+        if (p.FarRows != 0 && (Near16(Ld16(ref X, 0), Ld16(ref Y, 0), Ld16(ref Z, 0), in p) || Near16(Ld16(ref X, width), Ld16(ref Y, width), Ld16(ref Z, width), in p)))
+            far = 1;
         for (int k = 1; k < rows; k++)
         {
             for (int h = 0; h < lanes; h += width)
@@ -180,6 +185,7 @@ public sealed partial class FastBendSystem
                 }
                 x += cdx; y += cdy; z += cdz;
                 St16(ref X, u, x); St16(ref Y, u, y); St16(ref Z, u, z);
+                if (p.FarRows != 0 && Near16(x, y, z, in p)) far |= 1UL << k;
                 // The row above takes its kick now that this row's correction is known.
                 V fallX = Vector512.Create(p.FallX), fallY = Vector512.Create(p.FallY), fallZ = Vector512.Create(p.FallZ);
                 if (!allFree)
@@ -235,6 +241,7 @@ public sealed partial class FastBendSystem
                 St16(ref sh, Sqz * lanes, fqz * fInv); St16(ref sh, Sqw * lanes, fqw * fInv);
             }
         }
+        if (p.FarRows != 0) unsafe { *(ulong*)p.FarRows = far; }
         if (rows < 2) return;
         for (int h = 0; h < lanes; h += width)
         {
@@ -327,6 +334,17 @@ public sealed partial class FastBendSystem
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static V Fms(V a, V b, V c) => Simd.MulSub(a, b, c);
+
+    /// <summary>
+    /// Whether some lane is inside the far sphere of <paramref name="p"/>: the ellipsoid kernel's own far test
+    /// (FastCollideSystem.FarSphere), the same operations on the same values, so a row it passes is one the kernel skips.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static bool Near16(V x, V y, V z, in SweepParams p)
+    {
+        var dx = x - Vector512.Create(p.FarX); var dy = y - Vector512.Create(p.FarY); var dz = z - Vector512.Create(p.FarZ);
+        return !Vector512.GreaterThanAll(dx * dx + dy * dy + dz * dz, Vector512.Create(p.FarOuter2));
+    }
 
     /// <summary>The free lanes (inverse mass m ≠ 0): the mask the rare paths select by.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

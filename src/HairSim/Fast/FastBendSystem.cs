@@ -236,15 +236,24 @@ public sealed partial class FastBendSystem : IHairSystem
         public readonly int Ox, Oy, Oz, Ovx, Ovy, Ovz, Om, Ol, Orx, Ory, Orz, Oa, Ob, Lanes;
         /// <summary>The chunk runner's prefetch of the next chunk, advanced once per row (0: none).</summary>
         public readonly nint Prefetch;
+        /// <summary>Where the 16-lane sweep writes its far-row mask (<see cref="StrandChunk.FarRows"/>; 0: no test), and the far sphere it tests against.</summary>
+        public readonly nint FarRows;
+        public readonly float FarX, FarY, FarZ, FarOuter2;
 
         public SweepParams(FrameContext ctx, int substep, scoped StrandScratch t, int lanes)
             : this(ctx, substep, lanes, t.Offset(TX), t.Offset(TY), t.Offset(TZ), t.Offset(TVx), t.Offset(TVy), t.Offset(TVz), t.Offset(TM), t.Offset(TL),
                 t.Offset(TRx), t.Offset(TRy), t.Offset(TRz), t.Offset(TA), t.Offset(TB)) { }
 
         public SweepParams(FrameContext ctx, int substep, int lanes, int ox, int oy, int oz, int ovx, int ovy, int ovz, int om, int ol,
-            int orx, int ory, int orz, int oa, int ob, nint prefetch = 0)
+            int orx, int ory, int orz, int oa, int ob, nint prefetch = 0, nint farRows = 0)
         {
             Prefetch = prefetch;
+            FarRows = farRows;
+            if (farRows != 0)
+            {
+                FastCollideSystem.FarSphere(ctx.CollidersAt(substep)[0], out var centre, out FarOuter2);
+                FarX = centre.X; FarY = centre.Y; FarZ = centre.Z;
+            }
             var st = ctx.Settings;
             float h = ctx.H;
             H = h; InvH = 1f / h;

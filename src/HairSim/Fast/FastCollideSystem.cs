@@ -67,9 +67,43 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
         return true;
     }
 
+    /// <summary>
+    /// Whether the frame's chunks may take the far rows the bend sweep found (<see cref="StrandChunk.FarRows"/>): one
+    /// ellipsoid, whose kernel skips a row of 16 lanes all outside its far sphere (<see cref="FarSphere"/>), is the only collider.
+    /// </summary>
+    internal static bool TakesFarRows(FrameContext ctx)
+    {
+        if (ctx.ColliderCount != 1) return false;
+        for (int s = 0; s < ctx.Substeps; s++) if (ctx.CollidersAt(s)[0].Kind != ColliderKind.Ellipsoid) return false;
+        return true;
+    }
+
+    /// <summary>
+    /// The ellipsoid kernel's far test, as the bend sweep repeats it: a particle p is far when |p − centre|², summed
+    /// x, y then z, is over <paramref name="outer2"/> (the largest radius squared, with room for the roundings of the
+    /// rotation and of q·q).
+    /// </summary>
+    internal static void FarSphere(in Collider c, out Vector3 centre, out float outer2)
+    {
+        float r = MathF.Max(c.Radii.X, MathF.Max(c.Radii.Y, c.Radii.Z));
+        centre = c.Center;
+        outer2 = r * r * 1.0001f;
+    }
+
     bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
     {
         var colliders = ctx.CollidersAt(substep);
+        if (chunk.FarRows != 0)
+        {
+            // The sweep just before found the rows with a lane inside the far sphere; the rest would all be skipped.
+            ulong rows;
+            unsafe { rows = *(ulong*)chunk.FarRows; }
+#if DEBUG
+            CheckFarRows(chunk, colliders[0], rows);
+#endif
+            chunk.ForEachCellOfRows(ref _chunkEllipsoids[substep], rows);
+            return true;
+        }
         for (int c = 0; c < colliders.Length; c++)
         {
             int i = substep * colliders.Length + c;
@@ -79,6 +113,25 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
         }
         return true;
     }
+
+#if DEBUG
+    /// <summary>Debug builds: every live row the sweep left out is one the ellipsoid kernel would skip (all 32 lanes far).</summary>
+    private static void CheckFarRows(scoped StrandChunk chunk, in Collider c, ulong rows)
+    {
+        FarSphere(c, out var centre, out float outer2);
+        for (int k = 0; k < chunk.LiveRows; k++)
+        {
+            if ((rows >> k & 1) != 0) continue;
+            for (int l = 0; l < StrandChunk.Lanes; l++)
+            {
+                float dx = Unsafe.Add(ref chunk.Row(StrandChunk.X, k), l) - centre.X, dy = Unsafe.Add(ref chunk.Row(StrandChunk.Y, k), l) - centre.Y,
+                    dz = Unsafe.Add(ref chunk.Row(StrandChunk.Z, k), l) - centre.Z;
+                if (!(dx * dx + dy * dy + dz * dz > outer2))
+                    throw new InvalidOperationException($"The bend sweep left out row {k} of the chunk from strand {chunk.FirstStrand}, whose lane {l} is inside the collider's far sphere.");
+            }
+        }
+    }
+#endif
 
     /// <summary>Every collider of the substep, over strands [begin, end).</summary>
     private void Resolve(FrameContext ctx, int substep, HairWorld w, int begin, int end)
@@ -149,11 +202,10 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
                 InvRx = Vector512.Create(1f / c.Radii.X), InvRy = Vector512.Create(1f / c.Radii.Y), InvRz = Vector512.Create(1f / c.Radii.Z),
                 InvRx2 = Vector512.Create(1f / (c.Radii.X * c.Radii.X)), InvRy2 = Vector512.Create(1f / (c.Radii.Y * c.Radii.Y)),
                 InvRz2 = Vector512.Create(1f / (c.Radii.Z * c.Radii.Z)), Ry = Vector512.Create(c.Radii.Y), Slide = Vector512.Create(slide),
-                // The largest radius squared, with room for the roundings of the rotation and of q·q (about 1e-6).
-                Outer2 = Vector512.Create(Largest(c.Radii) * Largest(c.Radii) * 1.0001f);
-            public readonly Vector<float> Outer8 = new(Largest(c.Radii) * Largest(c.Radii) * 1.0001f);
+                Outer2 = Vector512.Create(Outer(c));
+            public readonly Vector<float> Outer8 = new(Outer(c));
 
-            private static float Largest(Vector3 r) => MathF.Max(r.X, MathF.Max(r.Y, r.Z));
+            private static float Outer(in Collider c) { FarSphere(c, out _, out float outer2); return outer2; }
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]

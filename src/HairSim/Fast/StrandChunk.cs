@@ -60,9 +60,17 @@ internal readonly ref struct StrandChunk
     /// <summary>The runner's prefetch of the next chunk (a <see cref="Prefetcher"/> on its stack), or 0: see <see cref="Prefetcher.Row"/>.</summary>
     public readonly nint Prefetch;
 
-    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, ulong pinnedRows, int height = Rows, int firstStrand = 0, nint prefetch = 0, int liveRows = -1)
+    /// <summary>
+    /// This frame's far-row mask (a ulong on the runner's stack), or 0: the bend sweep writes bit k where some lane of
+    /// row k ends its substep inside the collider's far sphere, and the collision that follows it takes only those rows
+    /// (see <see cref="StrandChunkRunner.FuseFarRows"/>).
+    /// </summary>
+    public readonly nint FarRows;
+
+    public StrandChunk(StrandScratch tile, ReadOnlySpan<int> firsts, ulong pinnedRows, int height = Rows, int firstStrand = 0, nint prefetch = 0, int liveRows = -1,
+        nint farRows = 0)
     {
-        Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height; FirstStrand = firstStrand; Prefetch = prefetch;
+        Tile = tile; Firsts = firsts; PinnedRows = pinnedRows; Height = height; FirstStrand = firstStrand; Prefetch = prefetch; FarRows = farRows;
         LiveRows = liveRows < 0 ? height : Math.Min(liveRows, height);
     }
 
@@ -98,6 +106,20 @@ internal readonly ref struct StrandChunk
             kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
                 ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
                 ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
+    }
+
+    /// <summary><see cref="ForEachCell"/> on the rows whose bits are set in <paramref name="rows"/> only (both halves of each).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public void ForEachCellOfRows<TKernel>(ref TKernel kernel, ulong rows) where TKernel : struct, IWideParticleKernel
+    {
+        ref float px = ref Row(X, 0), py = ref Row(Y, 0), pz = ref Row(Z, 0);
+        ref float vx = ref Row(VelX, 0), vy = ref Row(VelY, 0), vz = ref Row(VelZ, 0), m = ref Row(InvMass, 0);
+        ref float rx = ref Row(RestX, 0), ry = ref Row(RestY, 0), rz = ref Row(RestZ, 0);
+        for (; rows != 0; rows &= rows - 1)
+            for (int i = BitOperations.TrailingZeroCount(rows) * Lanes, end = i + Lanes; i < end; i += 16)
+                kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
+                    ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
+                    ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
     }
 }
 
@@ -205,6 +227,19 @@ internal sealed class StrandChunkRunner
     private readonly int _integrateAt = -1;
     private int _fusedAway = -1;
 
+    /// <summary>
+    /// Whether the bend sweep tests each row it finishes against the collider's far sphere when <see cref="FastCollideSystem"/>
+    /// runs just after it with one ellipsoid, so that the collision skips the rows its own test would find far in
+    /// every lane (the same test on the same values, so the same bits; default on). A switch for tests and measurement.
+    /// </summary>
+    public bool FuseFarRows { get; set; } = true;
+
+    /// <summary>Whether this frame's chunk sweeps test their rows for the collision (<see cref="FuseFarRows"/>).</summary>
+    public bool TestsFarRowsInSweep => _farRowsThisFrame;
+    // The bend sweep followed by the collision (an index into _chunkSystems), or −1; and whether this frame takes it.
+    private readonly int _bendAt = -1;
+    private bool _farRowsThisFrame;
+
     private StrandChunkRunner(IHairSystem[] systems, IStrandChunkSystem[] chunkSystems)
     {
         _systems = systems;
@@ -224,6 +259,8 @@ internal sealed class StrandChunkRunner
         _prepares = [.. prepares]; _prefetchState = [.. prefetchState]; _withBlocks = [.. withBlocks];
         for (int k = 0; k + 1 < chunkSystems.Length; k++)
             if (chunkSystems[k] is FastIntegrateSystem && chunkSystems[k + 1] is FastBendSystem) _integrateAt = k;
+        for (int k = 0; k + 1 < chunkSystems.Length; k++)
+            if (chunkSystems[k] is FastBendSystem && chunkSystems[k + 1] is FastCollideSystem) _bendAt = k;
         _takesCut = true;
         foreach (var c in chunkSystems) { _needs |= c.ChunkNeeds; _takesCut &= c.TakesCutStrands; }
         _constantRows = new ChunkConstantRows(_needs);
@@ -278,6 +315,8 @@ internal sealed class StrandChunkRunner
         _rowPaced = false;
         foreach (var c in _chunkSystems) _rowPaced |= c.SweepsRows;
         _fusedAway = _integrateAt >= 0 && ((FastBendSystem)_chunkSystems[_integrateAt + 1]).FuseIntegrate(FuseIntegration) ? _integrateAt : -1;
+        _farRowsThisFrame = FuseFarRows && _bendAt >= 0 && ((FastBendSystem)_chunkSystems[_bendAt]).SweepsChunks
+            && FastCollideSystem.TakesFarRows(ctx);
         return true;
     }
 
@@ -379,7 +418,8 @@ internal sealed class StrandChunkRunner
         var prefetch = new Prefetcher(w, s0 + StrandChunk.Lanes, first + StrandChunk.Lanes * height, height, _constantRows, _withBlocks);
         int calls = ctx.Substeps * (_rowPaced ? Math.Max(1, liveRows - 1) * StrandChunk.RowPrefetchCalls : _chunkSystems.Length);
         prefetch.PerCall = (prefetch.Lines + calls - 1) / calls;
-        var chunk = new StrandChunk(tile, firsts, pinned, height, s0, _rowPaced ? (nint)(&prefetch) : 0, liveRows);
+        ulong farRows = 0;
+        var chunk = new StrandChunk(tile, firsts, pinned, height, s0, _rowPaced ? (nint)(&prefetch) : 0, liveRows, _farRowsThisFrame ? (nint)(&farRows) : 0);
         foreach (var prepare in _prepares) prepare(w, s0, chunk);
         for (int s = 0; s < ctx.Substeps; s++)
             for (int k = 0; k < _chunkSystems.Length; k++)

@@ -272,6 +272,47 @@ public class StrandChunkTests(ITestOutputHelper output)
     }
 
     [Theory]
+    [InlineData("rest", 1)]
+    [InlineData("rest", 2)]
+    [InlineData("rest-bent", 2)]
+    [InlineData("rest-rotated-ellipsoid", 1)]
+    [InlineData("rest-cut-mixed", 1)]
+    [InlineData("rest-p3", 2)]
+    [InlineData("rest-p40", 1)]
+    [InlineData("rest-all-colliders", 1)]
+    public void TheCollisionOnTheSweepsNearRowsGivesTheBitsOfItsOwnPassOverEveryRow(string scene, int threads)
+    {
+        if (!ChunksExpected) return; // chunks (and so the sweep's row test) need AVX-512
+        using var dispatcher = new ParallelDispatcher(threads);
+        var (fused, apart, simF, simA) = Twins(scene, dispatcher, p => p.FuseChunkFarRows = false);
+        Assert.True(simF.Pipeline.FuseChunkFarRows);
+        int stepped = 0;
+        for (int f = 1; f <= 12; f++)
+        {
+            simF.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simA.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            // Only one ellipsoid is taken (several colliders keep the collision's pass over every row).
+            Assert.Equal(scene != "rest-all-colliders", simF.Pipeline.LastFrameTestedFarRowsInSweep);
+            Assert.False(simA.Pipeline.LastFrameTestedFarRowsInSweep);
+            stepped += simF.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(fused.World.BitEquals(apart.World), $"{scene}, {threads} thread(s): the sweep's near rows and the collision's own pass differ after frame {f}");
+        }
+        Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
+        // Not vacuous: the hair is both near the head (rows the collision takes) and far from it (rows it skips).
+        var last = simF.Pipeline.LastFrame;
+        var head = last.CollidersAt(last.Substeps - 1)[0]; // where the moving head was at the end of the last substep
+        FastCollideSystem.FarSphere(head, out var centre, out float outer2);
+        var w = fused.World;
+        int near = 0;
+        for (int i = 0; i < w.ParticleCount; i++)
+        {
+            var d = new System.Numerics.Vector3(w.PosX[i], w.PosY[i], w.PosZ[i]) - centre;
+            if (d.LengthSquared() <= outer2) near++;
+        }
+        Assert.InRange(near, 1, w.ParticleCount - 1);
+    }
+
+    [Theory]
     [InlineData(1)]
     [InlineData(2)]
     public void ChunksCutShortInEveryStrandSweepOnlyTheirLiveRowsWithTheBitsOfTheSystemBySystemPath(int threads)
