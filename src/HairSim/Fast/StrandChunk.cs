@@ -415,7 +415,8 @@ internal sealed class StrandChunkRunner
         }
         // The next chunk's data is fetched from memory while this one computes: a share per row of a system that
         // sweeps rows, else a slice after each system.
-        var prefetch = new Prefetcher(w, s0 + StrandChunk.Lanes, first + StrandChunk.Lanes * height, height, _constantRows, _withBlocks);
+        var prefetch = new Prefetcher(w, s0 + StrandChunk.Lanes, first + StrandChunk.Lanes * height, height, _constantRows, _withBlocks,
+            twoAhead: ctx.Substeps == 1);
         int calls = ctx.Substeps * (_rowPaced ? Math.Max(1, liveRows - 1) * StrandChunk.RowPrefetchCalls : _chunkSystems.Length);
         prefetch.PerCall = (prefetch.Lines + calls - 1) / calls;
         ulong farRows = 0;
@@ -717,35 +718,58 @@ internal unsafe struct Prefetcher
     // Positions, velocities, masses and rest lengths (8), the bend sweep's block (5), the mesh collision's carried clearances (4).
     private const int MaxFields = 24;
     private fixed long _field[MaxFields];
+    // Per field: bytes from the next chunk's rows to the rows of the chunk after it (0: none, or not fetched).
+    private fixed long _ahead[MaxFields];
     private int _cursor;
     private readonly int _linesPerField;
+    private readonly bool _twoAhead;
 
-    public Prefetcher(HairWorld w, int s0, int first, int height, ChunkConstantRows constant, IStrandChunkSystem[] systems)
+    /// <param name="twoAhead">
+    /// Also fetch the chunk after the next one into L2, line for line with the next one into L1: for frames of one
+    /// substep, whose chunks compute a quarter as long as at four, so that the next chunk's lines come from L2
+    /// instead of memory (the core can wait on only so many lines from memory at once).
+    /// </param>
+    public Prefetcher(HairWorld w, int s0, int first, int height, ChunkConstantRows constant, IStrandChunkSystem[] systems, bool twoAhead = false)
     {
         _cursor = 0; _fieldAt = 0; _lineAt = 0;
+        _twoAhead = twoAhead;
         int n = 0, cells = StrandChunk.Lanes * height;
         _linesPerField = cells * sizeof(float) / 64;
         // Nothing past the world's end.
         if (first + cells <= w.ParticleCount && Sse.IsSupported)
         {
-            Add(w.PosX, first, ref n); Add(w.PosY, first, ref n); Add(w.PosZ, first, ref n);
-            Add(w.VelX, first, ref n); Add(w.VelY, first, ref n); Add(w.VelZ, first, ref n);
+            // The chunk after the next one, where the next one's strands are followed by 32 more of its capacity.
+            int after = twoAhead && first + 2 * cells <= w.ParticleCount ? cells : 0;
+            Add(w.PosX, first, after, ref n); Add(w.PosY, first, after, ref n); Add(w.PosZ, first, after, ref n);
+            Add(w.VelX, first, after, ref n); Add(w.VelY, first, after, ref n); Add(w.VelZ, first, after, ref n);
             // The masses and rest data as kept in row layout (what the next chunk copies if it was seen unedited).
             var kept = constant.Blocks;
             int count = constant.Fields.Length;
             if ((long)count * (first + cells) <= kept.Length)
-                for (int f = 0; f < count; f++) Add(kept, count * first + f * cells, ref n);
+            {
+                int keptAfter = after > 0 && (long)count * (first + 2 * cells) <= kept.Length ? count * cells : 0;
+                for (int f = 0; f < count; f++) Add(kept, count * first + f * cells, keptAfter, ref n);
+            }
             foreach (var c in systems)
             {
                 var block = c.ChunkBlock(s0, first, cells, out int offset, out int fields);
                 if (block == null || offset < 0 || (long)offset + (long)fields * cells > block.Length) continue;
-                for (int f = 0; f < fields && n < MaxFields; f++) Add(block, offset + f * cells, ref n);
+                // A block laid out at its chunk's first particle (fields × that): the next chunk's starts fields × cells on.
+                int blockAfter = after > 0 && (long)offset + 2L * fields * cells <= block.Length ? fields * cells : 0;
+                for (int f = 0; f < fields && n < MaxFields; f++) Add(block, offset + f * cells, blockAfter, ref n);
             }
         }
         Lines = n * _linesPerField;
     }
 
-    private void Add(float[] a, int first, ref int n) => _field[n++] = (long)Unsafe.AsPointer(ref Simd.At(a, first));
+    private void Add(float[] a, int first, int after, ref int n)
+    {
+        _ahead[n] = (long)after * sizeof(float);
+        _field[n++] = (long)Unsafe.AsPointer(ref Simd.At(a, first));
+    }
+
+    /// <summary>Bytes from field <paramref name="field"/>'s rows of the next chunk to those of the chunk after it (0: not fetched).</summary>
+    internal long AheadBytes(int field) => _ahead[field];
 
     public int Lines { get; }
 
@@ -761,12 +785,24 @@ internal unsafe struct Prefetcher
         _cursor += left;
         int field = _fieldAt, line = _lineAt, per = _linesPerField;
         byte* p = (byte*)_field[field] + line * 64;
-        for (; left > 0; left--)
+        if (_twoAhead)
         {
-            Sse.Prefetch0(p);
-            p += 64;
-            if (++line == per && ++field < MaxFields) { line = 0; p = (byte*)_field[field]; }
+            long ahead = _ahead[field];
+            for (; left > 0; left--)
+            {
+                Sse.Prefetch0(p);
+                if (ahead != 0) Sse.Prefetch1(p + ahead);
+                p += 64;
+                if (++line == per && ++field < MaxFields) { line = 0; p = (byte*)_field[field]; ahead = _ahead[field]; }
+            }
         }
+        else
+            for (; left > 0; left--)
+            {
+                Sse.Prefetch0(p);
+                p += 64;
+                if (++line == per && ++field < MaxFields) { line = 0; p = (byte*)_field[field]; }
+            }
         _fieldAt = field; _lineAt = line;
     }
     private int _fieldAt, _lineAt;

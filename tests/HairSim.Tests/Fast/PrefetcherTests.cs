@@ -34,6 +34,30 @@ public class PrefetcherTests
         Assert.Equal(p.Lines, p.Issued); // nothing past the chunk
     }
 
+    [Fact]
+    public void AtOneSubstepTheChunkAfterTheNextIsFetchedFromTheRowsOfTheNext()
+    {
+        if (!Sse.IsSupported) return;
+        const int particles = 16, cells = 32 * particles;
+        var g = CanonicalCases.SmallGroom(particles, 4, 32); // 128 strands: chunks from strands 0, 32, 64 and 96
+        var w = GroomBuilder.BuildScene(g, new SimulationSettings()).World;
+        var kept = new ChunkConstantRows(ChunkFields.RestLength);
+        kept.Fit(w);
+        // The next chunk from strand 32: the one after it (from strand 64) starts a chunk's cells on in the world's
+        // arrays, and two fields' worth of cells on in the kept rows (masses and rest lengths side by side per chunk).
+        var p = new Prefetcher(w, 32, w.StrandFirst[32], particles, kept, [], twoAhead: true);
+        Assert.Equal(w.StrandFirst[64] - w.StrandFirst[32], cells);
+        for (int f = 0; f < 6; f++) Assert.Equal(cells * sizeof(float), p.AheadBytes(f));
+        for (int f = 6; f < 8; f++) Assert.Equal(2 * cells * sizeof(float), p.AheadBytes(f));
+        // No chunk after the last but one: nothing fetched past the world's end.
+        var last = new Prefetcher(w, 96, w.StrandFirst[96], particles, kept, [], twoAhead: true);
+        Assert.Equal(w.ParticleCount, w.StrandFirst[96] + cells);
+        for (int f = 0; f < 8; f++) Assert.Equal(0, last.AheadBytes(f));
+        // Frames of more substeps fetch only the next chunk.
+        var four = new Prefetcher(w, 32, w.StrandFirst[32], particles, kept, []);
+        for (int f = 0; f < 8; f++) Assert.Equal(0, four.AheadBytes(f));
+    }
+
     [Theory]
     [InlineData(1)]
     [InlineData(2)]
