@@ -252,23 +252,9 @@ public class StrandChunkTests(ITestOutputHelper output)
     public void TheSweepThatIntegratesEachRowGivesTheBitsOfIntegrationsOwnPass(string scene, int threads)
     {
         if (!ChunksExpected) return; // chunks (and so the fused sweep) need AVX-512
-        using var dispatcher = new ParallelDispatcher(threads);
-        var (fused, apart, simF, simA) = Twins(scene, dispatcher, p => p.FuseChunkIntegration = false);
-        Assert.True(simF.Pipeline.FuseChunkIntegration);
-        int stepped = 0;
-        for (int f = 1; f <= 12; f++)
-        {
-            simF.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            simA.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            // Limp hair has no bend sweep to take the integration in.
-            Assert.Equal(scene != "limp", simF.Pipeline.LastFrameIntegratedInSweep);
-            Assert.False(simA.Pipeline.LastFrameIntegratedInSweep);
-            Assert.Equal(simF.Pipeline.LastFrameChunks.Stepped, simA.Pipeline.LastFrameChunks.Stepped);
-            stepped += simF.Pipeline.LastFrameChunks.Stepped;
-            Assert.True(fused.World.BitEquals(apart.World), $"{scene}, {threads} thread(s): fused and apart differ after frame {f}");
-        }
-        Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
-        Assert.False(FastPathScenes.Build(scene, SolverPath.Fast).World.BitEquals(fused.World));
+        // Limp hair has no bend sweep to take the integration in.
+        FusedAgainstApart(scene, threads, p => p.FuseChunkIntegration = false, p => p.FuseChunkIntegration,
+            p => p.LastFrameIntegratedInSweep, taken: scene != "limp", "fused and apart");
     }
 
     [Theory]
@@ -283,21 +269,9 @@ public class StrandChunkTests(ITestOutputHelper output)
     public void TheCollisionOnTheSweepsNearRowsGivesTheBitsOfItsOwnPassOverEveryRow(string scene, int threads)
     {
         if (!ChunksExpected) return; // chunks (and so the sweep's row test) need AVX-512
-        using var dispatcher = new ParallelDispatcher(threads);
-        var (fused, apart, simF, simA) = Twins(scene, dispatcher, p => p.FuseChunkFarRows = false);
-        Assert.True(simF.Pipeline.FuseChunkFarRows);
-        int stepped = 0;
-        for (int f = 1; f <= 12; f++)
-        {
-            simF.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            simA.Step(1f / 60f, FastPathScenes.HeadAt(f));
-            // Only one ellipsoid is taken (several colliders keep the collision's pass over every row).
-            Assert.Equal(scene != "rest-all-colliders", simF.Pipeline.LastFrameTestedFarRowsInSweep);
-            Assert.False(simA.Pipeline.LastFrameTestedFarRowsInSweep);
-            stepped += simF.Pipeline.LastFrameChunks.Stepped;
-            Assert.True(fused.World.BitEquals(apart.World), $"{scene}, {threads} thread(s): the sweep's near rows and the collision's own pass differ after frame {f}");
-        }
-        Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
+        // Only one ellipsoid is taken (several colliders keep the collision's pass over every row).
+        var (fused, simF) = FusedAgainstApart(scene, threads, p => p.FuseChunkFarRows = false, p => p.FuseChunkFarRows,
+            p => p.LastFrameTestedFarRowsInSweep, taken: scene != "rest-all-colliders", "the sweep's near rows and the collision's own pass");
         // Not vacuous: the hair is both near the head (rows the collision takes) and far from it (rows it skips).
         var last = simF.Pipeline.LastFrame;
         var head = last.CollidersAt(last.Substeps - 1)[0]; // where the moving head was at the end of the last substep
@@ -361,6 +335,33 @@ public class StrandChunkTests(ITestOutputHelper output)
     /// Two simulations of the same scene on one dispatcher, both worlds first edited alike (<paramref name="edit"/>), the
     /// second's pipeline then set apart (<paramref name="setSecond"/>).
     /// </summary>
+    /// <summary>
+    /// Twins of a scene, a pass fused in the first and apart in the second (<paramref name="apart"/>), stepped 12 frames:
+    /// the same bits after every frame, the same chunks, the fusion taken in every frame of the first twin exactly when
+    /// <paramref name="taken"/> and never in the second, some chunk stepped, and the hair moved. Returns the first twin.
+    /// </summary>
+    private static (HairScene Fused, HairSimulation SimFused) FusedAgainstApart(string scene, int threads, Action<HairPipeline> apart,
+        Func<HairPipeline, bool> switchedOn, Func<HairPipeline, bool> tookIt, bool taken, string what)
+    {
+        using var dispatcher = new ParallelDispatcher(threads);
+        var (fused, other, simF, simA) = Twins(scene, dispatcher, apart);
+        Assert.True(switchedOn(simF.Pipeline));
+        int stepped = 0;
+        for (int f = 1; f <= 12; f++)
+        {
+            simF.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            simA.Step(1f / 60f, FastPathScenes.HeadAt(f));
+            Assert.Equal(taken, tookIt(simF.Pipeline));
+            Assert.False(tookIt(simA.Pipeline));
+            Assert.Equal(simF.Pipeline.LastFrameChunks.Stepped, simA.Pipeline.LastFrameChunks.Stepped);
+            stepped += simF.Pipeline.LastFrameChunks.Stepped;
+            Assert.True(fused.World.BitEquals(other.World), $"{scene}, {threads} thread(s): {what} differ after frame {f}");
+        }
+        Assert.True(stepped > 0, $"{scene}: no chunk was stepped");
+        Assert.False(FastPathScenes.Build(scene, SolverPath.Fast).World.BitEquals(fused.World));
+        return (fused, simF);
+    }
+
     private static (HairScene First, HairScene Second, HairSimulation SimFirst, HairSimulation SimSecond) Twins(
         string scene, ParallelDispatcher dispatcher, Action<HairPipeline> setSecond, Action<HairWorld>? edit = null)
     {
