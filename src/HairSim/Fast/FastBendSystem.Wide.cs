@@ -67,10 +67,11 @@ public sealed partial class FastBendSystem
                 Ld16(ref rest, p.Orx + lanes + h), Ld16(ref rest, p.Ory + lanes + h), Ld16(ref rest, p.Orz + lanes + h), out var tx1, out var ty1, out var tz1);
             St16(ref sh, Stx * lanes, tx1); St16(ref sh, Sty * lanes, ty1); St16(ref sh, Stz * lanes, tz1);
         }
-        // Rows with a lane inside the collider's far sphere, for the collision just after (StrandChunk.FarRows): the
-        // root row as it stands now (nothing below moves it), each later row once its position is final.
+        // Rows with a free lane inside the collider's far sphere, for the collision just after (StrandChunk.FarRows):
+        // the root row as it stands now (nothing below moves it), each later row once its position is final. A half
+        // row pinned in every lane is left out too: the kernel pushes no pinned particle.
         ulong far = 0;
-        if (p.FarRows != 0 && (Near16(Ld16(ref X, 0), Ld16(ref Y, 0), Ld16(ref Z, 0), in p) || Near16(Ld16(ref X, width), Ld16(ref Y, width), Ld16(ref Z, width), in p)))
+        if (p.FarRows != 0 && (NearFree16(ref X, ref Y, ref Z, ref M, 0, in p) || NearFree16(ref X, ref Y, ref Z, ref M, width, in p)))
             far = 1;
         for (int k = 1; k < rows; k++)
         {
@@ -185,7 +186,7 @@ public sealed partial class FastBendSystem
                 }
                 x += cdx; y += cdy; z += cdz;
                 St16(ref X, u, x); St16(ref Y, u, y); St16(ref Z, u, z);
-                if (p.FarRows != 0 && Near16(x, y, z, in p)) far |= 1UL << k;
+                if (p.FarRows != 0 && !noneFree && Near16(x, y, z, in p)) far |= 1UL << k;
                 // The row above takes its kick now that this row's correction is known.
                 V fallX = Vector512.Create(p.FallX), fallY = Vector512.Create(p.FallY), fallZ = Vector512.Create(p.FallZ);
                 if (!allFree)
@@ -345,6 +346,10 @@ public sealed partial class FastBendSystem
         var dx = x - Vector512.Create(p.FarX); var dy = y - Vector512.Create(p.FarY); var dz = z - Vector512.Create(p.FarZ);
         return !Vector512.GreaterThanAll(dx * dx + dy * dy + dz * dz, Vector512.Create(p.FarOuter2));
     }
+
+    /// <summary><see cref="Near16"/> for the root row's half from <paramref name="i"/>, and some lane of it free.</summary>
+    private static bool NearFree16(ref float X, ref float Y, ref float Z, ref float M, int i, in SweepParams p) =>
+        !Vector512.EqualsAll(Ld16(ref M, i), V.Zero) && Near16(Ld16(ref X, i), Ld16(ref Y, i), Ld16(ref Z, i), in p);
 
     /// <summary>The free lanes (inverse mass m ≠ 0): the mask the rare paths select by.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -115,7 +115,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
     }
 
 #if DEBUG
-    /// <summary>Debug builds: every live row the sweep left out is one the ellipsoid kernel would skip (all 32 lanes far).</summary>
+    /// <summary>Debug builds: every live row the sweep left out is one the ellipsoid kernel would leave as it is (every free lane far).</summary>
     private static void CheckFarRows(scoped StrandChunk chunk, in Collider c, ulong rows)
     {
         FarSphere(c, out var centre, out float outer2);
@@ -124,10 +124,11 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
             if ((rows >> k & 1) != 0) continue;
             for (int l = 0; l < StrandChunk.Lanes; l++)
             {
+                if (Unsafe.Add(ref chunk.Row(StrandChunk.InvMass, k), l) == 0f) continue; // pinned: never pushed
                 float dx = Unsafe.Add(ref chunk.Row(StrandChunk.X, k), l) - centre.X, dy = Unsafe.Add(ref chunk.Row(StrandChunk.Y, k), l) - centre.Y,
                     dz = Unsafe.Add(ref chunk.Row(StrandChunk.Z, k), l) - centre.Z;
                 if (!(dx * dx + dy * dy + dz * dz > outer2))
-                    throw new InvalidOperationException($"The bend sweep left out row {k} of the chunk from strand {chunk.FirstStrand}, whose lane {l} is inside the collider's far sphere.");
+                    throw new InvalidOperationException($"The bend sweep left out row {k} of the chunk from strand {chunk.FirstStrand}, whose free lane {l} is inside the collider's far sphere.");
             }
         }
     }
