@@ -84,7 +84,7 @@ public sealed class HairPipeline
 
     /// <summary>
     /// On chunks, the bend sweep tests each row it finishes against the ellipsoid's far sphere, and the collision just
-    /// after it takes only the rows with a lane inside (default on; the same bits). Exists to measure and test the two against each other.
+    /// after it takes only the rows with a free lane inside (default on; the same bits). Exists to measure and test the two against each other.
     /// </summary>
     internal bool FuseChunkFarRows
     {

@@ -69,7 +69,8 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
 
     /// <summary>
     /// Whether the frame's chunks may take the far rows the bend sweep found (<see cref="StrandChunk.FarRows"/>): one
-    /// ellipsoid, whose kernel skips a row of 16 lanes all outside its far sphere (<see cref="FarSphere"/>), is the only collider.
+    /// ellipsoid, whose kernel leaves 16 lanes as they are when each is outside its far sphere (<see cref="FarSphere"/>)
+    /// or pinned, is the only collider.
     /// </summary>
     internal static bool TakesFarRows(FrameContext ctx)
     {
@@ -95,7 +96,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
         var colliders = ctx.CollidersAt(substep);
         if (chunk.FarRows != 0)
         {
-            // The sweep just before found the rows with a lane inside the far sphere; the rest would all be skipped.
+            // The sweep just before found the rows with a free lane inside the far sphere; the kernel leaves the rest as they are.
             ulong rows;
             unsafe { rows = *(ulong*)chunk.FarRows; }
 #if DEBUG

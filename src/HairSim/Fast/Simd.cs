@@ -52,6 +52,10 @@ internal static class Simd
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector512<uint> FiniteProbe(Vector512<float> v) => v.AsUInt32() << 1;
 
+    /// <summary><see cref="FiniteProbe(Vector512{float})"/> on 8-lane vectors.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static Vector<uint> FiniteProbe(Vector<float> v) => Vector.AsVectorUInt32(v) << 1;
+
     /// <summary>
     /// Whether |x|, |y| and |z| are at most the bound whose <see cref="FiniteProbe"/> is <paramref name="boundProbe"/>, in
     /// every lane (false for NaN): the probes order magnitudes as the floats do, so an integer maximum and one compare
@@ -64,7 +68,7 @@ internal static class Simd
     /// <summary><see cref="AllWithin(Vector512{float}, Vector512{float}, Vector512{float}, Vector512{uint})"/> on 8-lane vectors.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static bool AllWithin(Vector<float> x, Vector<float> y, Vector<float> z, Vector<uint> boundProbe) =>
-        Vector.LessThanOrEqualAll(Vector.Max(Vector.Max(Vector.AsVectorUInt32(x) << 1, Vector.AsVectorUInt32(y) << 1), Vector.AsVectorUInt32(z) << 1), boundProbe);
+        Vector.LessThanOrEqualAll(Vector.Max(Vector.Max(FiniteProbe(x), FiniteProbe(y)), FiniteProbe(z)), boundProbe);
 
     /// <summary>
     /// The <see cref="FiniteProbe"/> of a per-component bound under which no velocity can be over the speed limit

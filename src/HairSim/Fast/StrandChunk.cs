@@ -61,8 +61,8 @@ internal readonly ref struct StrandChunk
     public readonly nint Prefetch;
 
     /// <summary>
-    /// This frame's far-row mask (a ulong on the runner's stack), or 0: the bend sweep writes bit k where some lane of
-    /// row k ends its substep inside the collider's far sphere, and the collision that follows it takes only those rows
+    /// This frame's far-row mask (a ulong on the runner's stack), or 0: the bend sweep writes bit k where some free lane
+    /// of row k ends its substep inside the collider's far sphere, and the collision that follows it takes only those rows
     /// (see <see cref="StrandChunkRunner.FuseFarRows"/>).
     /// </summary>
     public readonly nint FarRows;
@@ -97,16 +97,8 @@ internal readonly ref struct StrandChunk
 
     /// <summary>Runs a per-particle kernel's 16-lane chunk over every cell (all lanes are live particles).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public void ForEachCell<TKernel>(ref TKernel kernel) where TKernel : struct, IWideParticleKernel
-    {
-        ref float px = ref Row(X, 0), py = ref Row(Y, 0), pz = ref Row(Z, 0);
-        ref float vx = ref Row(VelX, 0), vy = ref Row(VelY, 0), vz = ref Row(VelZ, 0), m = ref Row(InvMass, 0);
-        ref float rx = ref Row(RestX, 0), ry = ref Row(RestY, 0), rz = ref Row(RestZ, 0);
-        for (int i = 0, cells = LiveRows * Lanes; i < cells; i += 16)
-            kernel.Chunk16(ref Unsafe.Add(ref px, i), ref Unsafe.Add(ref py, i), ref Unsafe.Add(ref pz, i),
-                ref Unsafe.Add(ref vx, i), ref Unsafe.Add(ref vy, i), ref Unsafe.Add(ref vz, i),
-                ref Unsafe.Add(ref m, i), ref Unsafe.Add(ref rx, i), ref Unsafe.Add(ref ry, i), ref Unsafe.Add(ref rz, i));
-    }
+    public void ForEachCell<TKernel>(ref TKernel kernel) where TKernel : struct, IWideParticleKernel =>
+        ForEachCellOfRows(ref kernel, LiveRows == 64 ? ~0UL : (1UL << LiveRows) - 1);
 
     /// <summary><see cref="ForEachCell"/> on the rows whose bits are set in <paramref name="rows"/> only (both halves of each).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -229,8 +221,8 @@ internal sealed class StrandChunkRunner
 
     /// <summary>
     /// Whether the bend sweep tests each row it finishes against the collider's far sphere when <see cref="FastCollideSystem"/>
-    /// runs just after it with one ellipsoid, so that the collision skips the rows its own test would find far in
-    /// every lane (the same test on the same values, so the same bits; default on). A switch for tests and measurement.
+    /// runs just after it with one ellipsoid, so that the collision skips the rows whose every lane its own test would
+    /// find far, or is pinned (the same test on the same values, so the same bits; default on). A switch for tests and measurement.
     /// </summary>
     public bool FuseFarRows { get; set; } = true;
 
