@@ -39,6 +39,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
 
     private readonly MeshCollideSystem _reference = new();
     private readonly HairScene? _scene;
+    // Per chunk (at its first strand): its longest segment this frame, from its first substep (ChunkMaxRest).
+    private float[] _chunkMaxRest = [];
     // This frame's mesh colliders and each one's pose per substep ([substep × count + mesh]).
     private MeshCollideSystem.Pose[] _poses = [];
     private MeshCollider[] _colliders = [];
@@ -59,6 +61,8 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     unsafe bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {
         _colliders = _scene?.MeshColliderArray ?? [];
+        int strands = _scene?.World.StrandCount ?? 0;
+        if (_chunkMaxRest.Length != strands) _chunkMaxRest = new float[strands];
         int n = _colliders.Length;
         if (_poses.Length < ctx.Substeps * n) _poses = new MeshCollideSystem.Pose[ctx.Substeps * n];
         for (int s = 0; s < ctx.Substeps; s++)
@@ -143,7 +147,11 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         if (colliders.Length == 0) return true;
         const int L = StrandChunk.Lanes;
         bool carried = mine && _carry.Length == colliders.Length;
-        float maxRest = ChunkMaxRest(chunk);
+        // The longest segment, measured at the chunk's first substep and kept for the rest (rest lengths hold all frame).
+        float maxRest;
+        if (substep == 0 || !mine || chunk.FirstStrand >= _chunkMaxRest.Length) maxRest = ChunkMaxRest(chunk);
+        else maxRest = _chunkMaxRest[chunk.FirstStrand];
+        if (substep == 0 && mine && chunk.FirstStrand < _chunkMaxRest.Length) _chunkMaxRest[chunk.FirstStrand] = maxRest;
         ref int live = ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(scene.World.StrandParticleCount), chunk.FirstStrand);
         var rows = new Rows(chunk);
         // Each row's lower bound and move from its record (Kernel.Classify), 16 lanes per row.
