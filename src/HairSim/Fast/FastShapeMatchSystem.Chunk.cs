@@ -63,7 +63,7 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
                 var ok = Vector512.GreaterThan(len2, eps2);
                 bad |= ~ok;
                 var l2 = Vector512.ConditionalSelect(ok, len2, Vector512<float>.One);
-                var inv = Simd.InvSqrt16(l2);
+                var inv = Simd.InvSqrt14x16(l2);
                 ex *= inv; ey *= inv; ez *= inv;
                 var pa = Vector512.LoadUnsafe(ref sp, r); var pm = Vector512.LoadUnsafe(ref sm, r); var pn = Vector512.LoadUnsafe(ref sn, r);
                 ((ox - ax) + pa * ex).StoreUnsafe(ref g, r); ((oy - ay) + pa * ey).StoreUnsafe(ref g, r + field);

@@ -47,7 +47,7 @@ public sealed partial class FastShapeMatchSystem
         var ex = cx - ax; var ey = cy - ay; var ez = cz - az;
         var len2 = ex * ex + ey * ey + ez * ez;
         ok = Vector.GreaterThan(len2, eps2);
-        var inv = Simd.InvSqrt(Simd.Sel(ok, len2, Vector<float>.One));
+        var inv = Simd.InvSqrt14(Simd.Sel(ok, len2, Vector<float>.One));
         ex *= inv; ey *= inv; ez *= inv;
         var pa = Simd.Ld(ref Simd.At(w.ShapePrev, 0), k); var pm = Simd.Ld(ref Simd.At(w.ShapeMid, 0), k); var pn = Simd.Ld(ref Simd.At(w.ShapeNext, 0), k);
         gpx = Simd.Sel(valid, (ox - ax) + pa * ex, default); gpy = Simd.Sel(valid, (oy - ay) + pa * ey, default); gpz = Simd.Sel(valid, (oz - az) + pa * ez, default);

@@ -65,7 +65,7 @@ public sealed partial class FastShapeMatchSystem
                 var len2 = ex * ex + ey * ey + ez * ez;
                 var ok = Vector512.GreaterThan(len2, eps2);
                 var l2 = Vector512.ConditionalSelect(ok, len2, Vector512<float>.One);
-                var inv = Simd.InvSqrt16(l2);
+                var inv = Simd.InvSqrt14x16(l2);
                 ex *= inv; ey *= inv; ez *= inv;
                 var kk = lane + Vector512.Create(k0);
                 var valid = (Vector512.GreaterThanOrEqual(kk, Vector512<int>.One) & Vector512.LessThanOrEqual(kk, lastTriple)).AsSingle();
@@ -148,7 +148,7 @@ public sealed partial class FastShapeMatchSystem
         var ok = Vector512.GreaterThan(len2, c.Eps2);
         if (Vector512.AndNot(c.Valid, ok) != Vector512<float>.Zero) return false;
         var l2 = Vector512.ConditionalSelect(ok, len2, Vector512<float>.One);
-        var inv = Simd.InvSqrt16(l2);
+        var inv = Simd.InvSqrt14x16(l2);
         ex *= inv; ey *= inv; ez *= inv;
         var pa = Vector512.LoadUnsafe(ref Simd.At(w.ShapePrev, first)); var pm = Vector512.LoadUnsafe(ref Simd.At(w.ShapeMid, first));
         var pn = Vector512.LoadUnsafe(ref Simd.At(w.ShapeNext, first));

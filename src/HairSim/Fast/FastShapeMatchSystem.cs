@@ -387,7 +387,7 @@ public sealed partial class FastShapeMatchSystem : IHairSystem
         var ex = cx - ax; var ey = cy - ay; var ez = cz - az;
         var len2 = ex * ex + ey * ey + ez * ez;
         var ok = Vector.GreaterThan(len2, p.LenEps2);
-        var inv = Simd.InvSqrt(Simd.Sel(ok, len2, Vector<float>.One));
+        var inv = Simd.InvSqrt14(Simd.Sel(ok, len2, Vector<float>.One));
         ex *= inv; ey *= inv; ez *= inv;
         var degenerate = valid & ~ok;
         int o = scratch.Offset(0) + k0, st = scratch.Stride;
