@@ -222,8 +222,11 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
             if (Vector512.GreaterThanAll(dx * dx + dy * dy + dz * dz, k.Outer2)) return;
             k.ToLocal.Direction(dx, dy, dz, out var lx, out var ly, out var lz);
             var qx = lx * k.InvRx; var qy = ly * k.InvRy; var qz = lz * k.InvRz;
-            var r = Vector512.Sqrt(qx * qx + qy * qy + qz * qz);
-            var hit = Vector512.LessThan(r, Vector512<float>.One) & ~Vector512.Equals(Vector512.LoadUnsafe(ref invMass), Vector512<float>.Zero);
+            // Inside is decided on s = r², not r = √s: s < 1 exactly where √s < 1 (EllipsoidInsideTests), and the branch
+            // then does not wait for the root (wanted only by the rows with a lane inside).
+            var s = qx * qx + qy * qy + qz * qz;
+            var r = Vector512.Sqrt(s);
+            var hit = Vector512.LessThan(s, Vector512<float>.One) & ~Vector512.Equals(Vector512.LoadUnsafe(ref invMass), Vector512<float>.Zero);
             if (hit == Vector512<float>.Zero) return;
             var centre = Vector512.LessThan(r, Vector512.Create(1e-12f));
             var inv = Vector512<float>.One / Vector512.ConditionalSelect(centre, Vector512<float>.One, r);
@@ -272,8 +275,10 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
             if (Vector.GreaterThanAll(dx * dx + dy * dy + dz * dz, _w.Outer8)) return;
             _toLocal.Direction(dx, dy, dz, out var lx, out var ly, out var lz);
             var qx = lx * _invRx; var qy = ly * _invRy; var qz = lz * _invRz;
-            var r = Vector.SquareRoot(qx * qx + qy * qy + qz * qz);
-            var hit = Vector.LessThan(r, Vector<float>.One) & ~Vector.Equals(Simd.Ld(ref invMass, 0), Vector<float>.Zero);
+            // As Chunk16: inside decided on s = r² (exactly where r < 1).
+            var s = qx * qx + qy * qy + qz * qz;
+            var r = Vector.SquareRoot(s);
+            var hit = Vector.LessThan(s, Vector<float>.One) & ~Vector.Equals(Simd.Ld(ref invMass, 0), Vector<float>.Zero);
             if (Vector.EqualsAll(hit, Vector<int>.Zero)) return;
             // A particle at the centre is pushed along local +Y, as the reference does.
             var centre = Vector.LessThan(r, new Vector<float>(1e-12f));
