@@ -148,10 +148,9 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         const int L = StrandChunk.Lanes;
         bool carried = mine && _carry.Length == colliders.Length;
         // The longest segment, measured at the chunk's first substep and kept for the rest (rest lengths hold all frame).
-        float maxRest;
-        if (substep == 0 || !mine || chunk.FirstStrand >= _chunkMaxRest.Length) maxRest = ChunkMaxRest(chunk);
-        else maxRest = _chunkMaxRest[chunk.FirstStrand];
-        if (substep == 0 && mine && chunk.FirstStrand < _chunkMaxRest.Length) _chunkMaxRest[chunk.FirstStrand] = maxRest;
+        bool keeps = mine && chunk.FirstStrand < _chunkMaxRest.Length;
+        float maxRest = substep > 0 && keeps ? _chunkMaxRest[chunk.FirstStrand] : ChunkMaxRest(chunk);
+        if (substep == 0 && keeps) _chunkMaxRest[chunk.FirstStrand] = maxRest;
         ref int live = ref Unsafe.Add(ref MemoryMarshal.GetArrayDataReference(scene.World.StrandParticleCount), chunk.FirstStrand);
         var rows = new Rows(chunk);
         // Each row's lower bound and move from its record (Kernel.Classify), 16 lanes per row.
