@@ -67,7 +67,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         Prefetcher.First(_checkedH, s0); Prefetcher.First(_checkedZeta, s0); Prefetcher.Ends(_chunkBlock, s0);
     }
 
-    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
+    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped in StrandChunk chunk)
     {
         if (!_chunkActive) return;
         long stamp = w.EditStamp + 1L;
@@ -79,7 +79,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         _checkedStamp[s0] = stamp; _checkedSag[s0] = _chunkSag; _checkedH[s0] = _chunkH; _checkedZeta[s0] = _chunkZeta;
     }
 
-    private void PrepareStrands(HairWorld w, int s0, scoped StrandChunk chunk)
+    private void PrepareStrands(HairWorld w, int s0, scoped in StrandChunk chunk)
     {
         bool laidOut = true;
         for (int s = s0; s < s0 + StrandChunk.Lanes; s++)
@@ -107,7 +107,7 @@ public sealed partial class FastBendSystem : IStrandChunkSystem
         return _chunkActive && s0 < _chunkBlock.Length && _chunkBlock[s0] == s0 ? _chunkBend : null;
     }
 
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk)
     {
         if (!_chunkActive) return true;
         var t = chunk.Tile;

@@ -43,7 +43,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
     private PlaneKernel[] _chunkPlanes = [];
 
     /// <summary>A chunk's frictionless frame leaves the stored friction starts of its strands stale.</summary>
-    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) => _starts.Forget(w, s0, s0 + StrandChunk.Lanes);
+    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped in StrandChunk chunk) => _starts.Forget(w, s0, s0 + StrandChunk.Lanes);
 
     bool IStrandChunkSystem.BeginChunkFrame(FrameContext ctx)
     {
@@ -91,7 +91,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
         outer2 = r * r * 1.0001f;
     }
 
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk)
     {
         var colliders = ctx.CollidersAt(substep);
         if (chunk.FarRows != 0)
@@ -117,7 +117,7 @@ public sealed partial class FastCollideSystem : IHairSystem, IStrandChunkSystem
 
 #if DEBUG
     /// <summary>Debug builds: every live row the sweep left out is one the ellipsoid kernel would leave as it is (every free lane far).</summary>
-    private static void CheckFarRows(scoped StrandChunk chunk, in Collider c, ulong rows)
+    private static void CheckFarRows(scoped in StrandChunk chunk, in Collider c, ulong rows)
     {
         FarSphere(c, out var centre, out float outer2);
         for (int k = 0; k < chunk.LiveRows; k++)

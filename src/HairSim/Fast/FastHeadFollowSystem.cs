@@ -97,7 +97,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     /// per-strand pin cache (the world's rest arrays are not touched), else from the world.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk)
+    void IStrandChunkSystem.PrepareChunk(HairWorld w, int s0, scoped in StrandChunk chunk)
     {
         bool rowsCached = _cache && _cachedAt.Length == w.StrandCount && _pinRows.Length == 3 * w.ParticleCount;
         long at = w.EditStamp + 1L;
@@ -137,7 +137,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     }
 
     /// <summary>The chunk's pinned rest rows to (or from) its block of <see cref="_pinRows"/>.</summary>
-    private void CopyPinRows(scoped StrandChunk chunk, bool fromBlock)
+    private void CopyPinRows(scoped in StrandChunk chunk, bool fromBlock)
     {
         const int L = StrandChunk.Lanes;
         int block = 3 * chunk.Firsts[0], h = chunk.Height;
@@ -158,7 +158,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
     }
 
     /// <summary>The rest positions of the chunk's pinned particles, into its pinned rest rows (zero where a lane has no pin there).</summary>
-    private void FillPinRows(HairWorld w, int s0, scoped StrandChunk chunk)
+    private void FillPinRows(HairWorld w, int s0, scoped in StrandChunk chunk)
     {
         for (ulong rows = chunk.PinnedRows; rows != 0; rows &= rows - 1)
         {
@@ -209,7 +209,7 @@ public sealed class FastHeadFollowSystem : IHairSystem, IStrandChunkSystem
 
     /// <summary>As <see cref="Run"/> on a chunk: the rigid carry on a teleport, then the rows that hold pins, 16 lanes at a time with <see cref="PinKernel"/>'s arithmetic.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk)
     {
         int width = Vector<float>.Count;
         if (substep == 0 && ctx.Teleported)

@@ -46,7 +46,7 @@ public sealed class FastIntegrateSystem : IHairSystem, IStrandChunkSystem
         return true;
     }
 
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk)
     {
         chunk.ForEachCell(ref _chunkKernel);
         return true;

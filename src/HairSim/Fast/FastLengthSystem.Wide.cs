@@ -29,7 +29,7 @@ public sealed partial class FastLengthSystem : IStrandChunkSystem
     /// The sweep on a chunk, whose first slots are this system's tile fields: no gather or scatter, only the velocity
     /// kicks added to the chunk's velocities (as <see cref="Scatter"/> adds them to the world's).
     /// </summary>
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk)
     {
         var st = ctx.Settings;
         if (st.Length == LengthMode.None || LengthSystem.FusedIntoBend(st)) return true;

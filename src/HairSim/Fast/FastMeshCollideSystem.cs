@@ -140,7 +140,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
         return carry != null && offset + (long)fields * cells <= carry.Length ? carry : null;
     }
 
-    unsafe bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    unsafe bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk)
     {
         bool mine = ReferenceEquals(scene, _scene);
         var colliders = mine ? _colliders : scene.MeshColliderArray;
@@ -198,7 +198,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     }
 
     /// <summary>The chunk's longest segment (rows 1 … height − 1 hold the segments' rest lengths).</summary>
-    private static float ChunkMaxRest(scoped StrandChunk chunk)
+    private static float ChunkMaxRest(scoped in StrandChunk chunk)
     {
         const int L = StrandChunk.Lanes;
         ref float rest0 = ref chunk.Row(StrandChunk.RestLength, 0);

@@ -32,7 +32,7 @@ public sealed class FastSegmentCollideSystem : IHairSystem, IStrandChunkSystem
     bool IStrandChunkSystem.SupportsChunks => FastPathInfo.Avx512;
     ChunkFields IStrandChunkSystem.ChunkNeeds => ChunkFields.RestLength;
 
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk)
     {
         var colliders = ctx.CollidersAt(substep);
         const int L = StrandChunk.Lanes;

@@ -26,7 +26,7 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
     }
 
 
-    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk)
+    bool IStrandChunkSystem.RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk)
     {
         var st = ctx.Settings;
         if (st.Alpha <= 0f) return true;
@@ -37,7 +37,7 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
     }
 
     /// <summary>Goals of triples 1 … 14 into the goal rows; false if some triple's ends coincide.</summary>
-    private static bool ChunkGoals(scoped StrandChunk chunk)
+    private static bool ChunkGoals(scoped in StrandChunk chunk)
     {
         var third = Vector512.Create(1f / 3f); var eps2 = Vector512.Create(1e-24f);
         var bad = Vector512<float>.Zero;
@@ -78,7 +78,7 @@ public sealed partial class FastShapeMatchSystem : IStrandChunkSystem
     }
 
     /// <summary>v += f_j · (prev goal of triple j + 1 + mid goal of triple j + next goal of triple j − 1) on free particles.</summary>
-    private static void ChunkVelocities(scoped StrandChunk chunk, float f)
+    private static void ChunkVelocities(scoped in StrandChunk chunk, float f)
     {
         // α/h over the goal count: 1 at the root and the tip, 2 next to them, 3 elsewhere (as Consts16.F).
         var fOne = Vector512.Create(f); var fHalf = Vector512.Create(f / 2f); var fThird = Vector512.Create(f / 3f);

@@ -155,7 +155,7 @@ internal interface IStrandChunkSystem
     /// </summary>
     void PrefetchChunkState(int s0) { }
     /// <summary>Fills what the system keeps in a chunk beyond the loaded fields (head follow: the pins' rest positions).</summary>
-    void PrepareChunk(HairWorld w, int s0, scoped StrandChunk chunk) { }
+    void PrepareChunk(HairWorld w, int s0, scoped in StrandChunk chunk) { }
     /// <summary>
     /// Whether, this frame, <see cref="RunChunk"/> calls <see cref="Prefetcher.Row"/> with <see cref="StrandChunk.Prefetch"/>
     /// <see cref="StrandChunk.RowPrefetchCalls"/> times for each row it sweeps (rows 1 … height − 1, every substep): the
@@ -175,14 +175,18 @@ internal interface IStrandChunkSystem
     /// the chunk now (e.g. coinciding particles); the runner then finishes the chunk's frame through <see cref="IHairSystem.Run"/>.
     /// Implementations stay under tiered compilation (see <see cref="Transpose"/> on <c>AggressiveOptimization</c>).
     /// </summary>
-    bool RunChunk(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk);
+    bool RunChunk(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk);
 }
 
-/// <summary>A system's <see cref="IStrandChunkSystem.RunChunk"/>, bound once (see <see cref="StrandChunkRunner"/>).</summary>
-internal delegate bool ChunkStep(HairScene scene, FrameContext ctx, int substep, scoped StrandChunk chunk);
+/// <summary>
+/// A system's <see cref="IStrandChunkSystem.RunChunk"/>, bound once (see <see cref="StrandChunkRunner"/>). The chunk goes
+/// by reference: by value it was copied onto the stack for every call (a microcoded string move and a dozen more),
+/// a call per system and substep of every chunk.
+/// </summary>
+internal delegate bool ChunkStep(HairScene scene, FrameContext ctx, int substep, scoped in StrandChunk chunk);
 
 /// <summary>A system's <see cref="IStrandChunkSystem.PrepareChunk"/>, bound once.</summary>
-internal delegate void ChunkPrepare(HairWorld w, int s0, scoped StrandChunk chunk);
+internal delegate void ChunkPrepare(HairWorld w, int s0, scoped in StrandChunk chunk);
 
 /// <summary>
 /// Runs a job's strands through all substeps chunk by chunk: each run of 32 uncut 16-particle strands that every
