@@ -482,17 +482,18 @@ internal sealed class StrandChunkRunner
     {
         int from = tileRows, cells = StrandChunk.Lanes * tileRows;
         for (int l = 0; l < StrandChunk.Lanes; l++) from = Math.Min(from, w.StrandParticleCount[s0 + l]);
-        if (from >= tileRows) return tileRows;
+        // Every strand whole (short strands in a taller tile included): nothing past a cut. The rows past the strands'
+        // capacity hold no particle, and no system reads them (each reads only the chunk's own rows).
+        if (from >= height) return tileRows;
         var (lo, hi) = LiveCounts(w, s0);
         ref float data = ref tile.Data[0];
         ref float sv = ref saved[0];
-        for (int k = from; k < tileRows; k++)
+        for (int k = from; k < height; k++)
         {
             var (deadLo, deadHi) = Dead(lo, hi, k);
             ref float m = ref Unsafe.Add(ref data, tile.Offset(StrandChunk.InvMass) + k * StrandChunk.Lanes);
             Vector512.ConditionalSelect(deadLo, Vector512<float>.Zero, Vector512.LoadUnsafe(ref m)).StoreUnsafe(ref m);
             Vector512.ConditionalSelect(deadHi, Vector512<float>.Zero, Vector512.LoadUnsafe(ref m, 16)).StoreUnsafe(ref m, 16);
-            if (k >= height) continue; // no particle there: nothing to put back
             for (int f = 0; f < PastCutFields; f++)
             {
                 ref float row = ref Unsafe.Add(ref data, tile.Offset(StoredFields[f]) + k * StrandChunk.Lanes);
