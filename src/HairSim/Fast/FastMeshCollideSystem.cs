@@ -284,7 +284,7 @@ public sealed class FastMeshCollideSystem : IHairSystem, IStrandChunkSystem
     }
 
     /// <summary>The chunk's rows the kernel reads and writes (row k of a field starts k · 32 floats after its row 0).</summary>
-    private readonly ref struct Rows(StrandChunk chunk)
+    private readonly ref struct Rows(in StrandChunk chunk)
     {
         public readonly ref float X = ref chunk.Row(StrandChunk.X, 0), Y = ref chunk.Row(StrandChunk.Y, 0), Z = ref chunk.Row(StrandChunk.Z, 0);
         public readonly ref float Vx = ref chunk.Row(StrandChunk.VelX, 0), Vy = ref chunk.Row(StrandChunk.VelY, 0), Vz = ref chunk.Row(StrandChunk.VelZ, 0);

@@ -91,9 +91,7 @@ internal static class Simd
     {
         if (Avx.IsSupported && Vector<float>.Count == 8)
         {
-            var y = Avx.ReciprocalSqrt(x.AsVector256()).AsVector();
-            // Newton: y ← y·(1.5 − 0.5·x·y²)
-            return y * (new Vector<float>(1.5f) - new Vector<float>(0.5f) * x * y * y);
+            return NewtonStep(x, Avx.ReciprocalSqrt(x.AsVector256()).AsVector());
         }
         return Vector<float>.One / Vector.SquareRoot(x);
     }
@@ -105,8 +103,7 @@ internal static class Simd
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector512<float> InvSqrt16(Vector512<float> x)
     {
-        var y = Vector512.Create(Avx.ReciprocalSqrt(x.GetLower()), Avx.ReciprocalSqrt(x.GetUpper()));
-        return y * (Vector512.Create(1.5f) - Vector512.Create(0.5f) * x * y * y);
+        return NewtonStep(x, Vector512.Create(Avx.ReciprocalSqrt(x.GetLower()), Avx.ReciprocalSqrt(x.GetUpper())));
     }
 
     /// <summary>
@@ -119,17 +116,21 @@ internal static class Simd
     public static Vector<float> InvSqrt14(Vector<float> x)
     {
         if (!Avx512F.VL.IsSupported || Vector<float>.Count != 8) return InvSqrt(x);
-        var y = Avx512F.VL.ReciprocalSqrt14(x.AsVector256()).AsVector();
-        return y * (new Vector<float>(1.5f) - new Vector<float>(0.5f) * x * y * y);
+        return NewtonStep(x, Avx512F.VL.ReciprocalSqrt14(x.AsVector256()).AsVector());
     }
 
     /// <summary><see cref="InvSqrt14"/> on 16 lanes (AVX-512): the same estimate and Newton step, so the same bits in every lane.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static Vector512<float> InvSqrt14x16(Vector512<float> x)
-    {
-        var y = Avx512F.ReciprocalSqrt14(x);
-        return y * (Vector512.Create(1.5f) - Vector512.Create(0.5f) * x * y * y);
-    }
+    public static Vector512<float> InvSqrt14x16(Vector512<float> x) => NewtonStep(x, Avx512F.ReciprocalSqrt14(x));
+
+    /// <summary>One Newton step from an estimate y of 1/√x: y·(1.5 − 0.5·x·y²), the same order in every form above.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector<float> NewtonStep(Vector<float> x, Vector<float> y) =>
+        y * (new Vector<float>(1.5f) - new Vector<float>(0.5f) * x * y * y);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static Vector512<float> NewtonStep(Vector512<float> x, Vector512<float> y) =>
+        y * (Vector512.Create(1.5f) - Vector512.Create(0.5f) * x * y * y);
 
     /// <summary>One bit per lane of a mask, lane 0 in bit 0.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -476,7 +476,7 @@ internal sealed class StrandChunkRunner
     /// <summary>
     /// Masks the particles past each lane's cut as pins in the chunk (InvMass 0: no system moves them into a live
     /// one's way) and keeps the rows that hold them, which go back into the chunk under the same masks before it is
-    /// stored (row-wise, all in L1). Returns the first row holding a particle past a cut (16: none).
+    /// stored (row-wise, all in L1). Returns the first row holding a particle past a cut (the tile's rows: none).
     /// </summary>
     private static int SavePastCuts(HairWorld w, int s0, int height, int tileRows, scoped StrandScratch tile, Span<float> saved)
     {
