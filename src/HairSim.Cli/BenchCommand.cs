@@ -72,6 +72,7 @@ public static partial class BenchCommand
             scenes.Add(($"{g.SheetCount * g.StrandsPerSheet:N0} strands", g));
         }
         long maxParticles = scenes.Max(x => x.Groom.TotalParticles);
+        long smallest = scenes.Count > 1 ? scenes.Skip(1).Min(x => x.Groom.TotalParticles) : -1;
         foreach (var (name, groom) in scenes)
         {
             long particles = groom.TotalParticles;
@@ -80,7 +81,12 @@ public static partial class BenchCommand
             int refWarm = Math.Max(1, Math.Min(warmup, refFrames / 2));
             rows.Add(Frame(name, groom, SolverPath.Reference, SequentialDispatcher.Instance, 1, refWarm, refFrames));
             bool reference = name.StartsWith("reference", StringComparison.Ordinal);
-            if (!reference) rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames));
+            // The smallest groom (a game character's, whose chunks stay in cache) also at one substep per frame, side by
+            // side with its 4-substep frame on 1 thread: the one-substep ratio of a scene that is not memory's.
+            if (!reference && particles == smallest)
+                rows.AddRange(Interleaved([new(name, "fast", groom), new(name + ", 1 substep", "fast", groom, Tune: OneSubstep)],
+                    SequentialDispatcher.Instance, 1, warmup, frames));
+            else if (!reference) rows.Add(Frame(name, groom, SolverPath.Fast, SequentialDispatcher.Instance, 1, warmup, frames));
             else
             {
                 // Styled hair (the style command's cut, fitted fringe and baked rest pose) against the uncut groom, the
@@ -349,7 +355,7 @@ public static partial class BenchCommand
         sb.AppendLine($"- Runtime: {RuntimeInformation.FrameworkDescription}, SIMD width {System.Numerics.Vector<float>.Count} floats (Vector<float>), hardware acceleration {System.Numerics.Vector.IsHardwareAccelerated}");
         sb.AppendLine($"- Date: {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC");
         sb.AppendLine($"- Method: {warmup} warm-up frames (fast path: at least 1.5 s of them, so the JIT's optimised tier is what gets timed), then {frames} timed frames (fewer for the reference path on large scenes: it is timed on ⌈{frames}·278,400/particles⌉ frames, at least 3); median reported. 60 Hz frames, 4 substeps, head shaking (±40° at 1.5 Hz) so collisions happen. Steps/frame: the substeps whole-frame rows actually stepped, on average (the stability guards add some where the head moves far against a segment's length: the 64-particle strands' 4 mm segments), and ms/step = ms/frame ÷ steps/frame. Speed-up = reference ms/step ÷ this row's ms/step, both from this run. Bytes allocated/step = GC.GetTotalAllocatedBytes(precise) over the timed frames (all threads) ÷ steps. The largest scene's multi-threaded row is timed in {rounds} rounds of {frames} frames back to back; its median is over all of them, and the round medians are listed under Target 2. Rows marked \"fast, 8-lane\" run the same fast path with its AVX-512 code turned off (`PipelineBuilder.CreateDefault(allowAvx512: false)`), rows marked \"fast, no chunks\" with strand chunks turned off (`HairPipeline.UseStrandChunks = false`: each system over the world in turn), timed in the same simulation as chunks on, alternating blocks of 10 frames: before/after in one run.");
-        sb.AppendLine("- Rows \"…, styled\": the reference scene styled as the style command does (1 s settle, rest pose baked, chin-height cut through every layer, a curl fitted to the 1,035-strand fringe), timed from there. Rows \"fast, source's triples\": the same hair with the source's triple shape matching and a separate follow-the-leader pass (BendModel.SourceTriples, the default before the rest-shape model). Interleaved: the reference scene's fast rows on each thread count (default, styled, source's triples uncut and styled, one substep, the source's scheme alone with 4 and 1 substeps) are stepped in turn, in one process, and so are the rows of the particles-per-strand series (blocks of about equal time: 10 frames of the group's slowest scene and up to 80 of a faster one); their ratios are taken in one window of time.");
+        sb.AppendLine("- Rows \"…, styled\": the reference scene styled as the style command does (1 s settle, rest pose baked, chin-height cut through every layer, a curl fitted to the 1,035-strand fringe), timed from there. Rows \"fast, source's triples\": the same hair with the source's triple shape matching and a separate follow-the-leader pass (BendModel.SourceTriples, the default before the rest-shape model). Interleaved: the reference scene's fast rows on each thread count (default, styled, source's triples uncut and styled, one substep, the source's scheme alone with 4 and 1 substeps) are stepped in turn, in one process, and so are the smallest scene's 4-substep and one-substep rows on 1 thread and the rows of the particles-per-strand series (blocks of about equal time: 10 frames of the group's slowest scene and up to 80 of a faster one); their ratios are taken in one window of time.");
         sb.AppendLine("- Per-system rows: one system alone (a pipeline holding only it, strand chunks off, so the row times the system's own pass over the world; ShapeMatch and Length on the source's scheme, whose systems they are), each frame starting from the same warm state (1 s of shaking), on the reference scene. Interpolate is the render interpolation, once per frame (the scene gets default render settings: one render strand between neighbours, 549,840 render points); the whole-frame rows have no render strands (docs/leave-out.md times frames with them).");
         sb.AppendLine("- All rows come from one run on a shared machine (other builds may run at the same time): compare rows within the table, and rerun for absolute numbers.");
         sb.AppendLine();
@@ -386,6 +392,13 @@ public static partial class BenchCommand
             double native = n == 1 ? 0.354 : n == 2 ? 0.193 : double.NaN;
             if (four != null && one != null)
                 sb.AppendLine(string.Create(Inv, $"One substep per frame (guards off, which would make it 2), default model, {n} thread{(n == 1 ? "" : "s")}: {one.MedianMs:F3} ms per frame against {four.MsPerStep:F3} ms per substep at 4 substeps (**{one.MedianMs / four.MsPerStep:F2}×**; target: at most 1.3×)."));
+            foreach (var small in rows.FindAll(r => r.Threads == n && r.Part == "frame" && r.Path == "fast" && !r.Scene.StartsWith(Ref, StringComparison.Ordinal)
+                && r.Scene.EndsWith(", 1 substep", StringComparison.Ordinal)))
+            {
+                var smallFour = Find(small.Scene[..^", 1 substep".Length]);
+                if (smallFour != null)
+                    sb.AppendLine(string.Create(Inv, $"One substep per frame, {smallFour.Scene} (a small groom, whose chunks stay in the caches), {n} thread{(n == 1 ? "" : "s")}: {small.MedianMs:F3} ms per frame against {smallFour.MsPerStep:F3} ms per substep at 4 substeps (**{small.MedianMs / smallFour.MsPerStep:F2}×**)."));
+            }
             if (s4 != null && s1 != null)
                 sb.AppendLine(string.Create(Inv, $"The source's scheme alone (triples at α 0.5, no length pass, guards and speed limit off), {n} thread{(n == 1 ? "" : "s")}: {s4.MsPerStep:F3} ms per substep at 4 substeps, {s1.MedianMs:F3} ms per frame at 1 substep{(double.IsFinite(native) ? $"; against a hand-vectorised native C kernel of the same scheme ({native:F3} ms per step on the same machine, measured separately; the kernel is not in the project): **{s4.MsPerStep / native:F2}×** and **{s1.MedianMs / native:F2}×**" : "")}."));
         }
