@@ -72,7 +72,9 @@ public static partial class BenchCommand
             scenes.Add(($"{g.SheetCount * g.StrandsPerSheet:N0} strands", g));
         }
         long maxParticles = scenes.Max(x => x.Groom.TotalParticles);
+        // The smallest groom of the scaling series, if it is smaller than the reference scene (else −1).
         long smallest = scenes.Count > 1 ? scenes.Skip(1).Min(x => x.Groom.TotalParticles) : -1;
+        if (smallest >= scenes[0].Groom.TotalParticles) smallest = -1;
         foreach (var (name, groom) in scenes)
         {
             long particles = groom.TotalParticles;
