@@ -83,8 +83,8 @@ public static partial class BenchCommand
             int refWarm = Math.Max(1, Math.Min(warmup, refFrames / 2));
             rows.Add(Frame(name, groom, SolverPath.Reference, SequentialDispatcher.Instance, 1, refWarm, refFrames));
             bool reference = name.StartsWith("reference", StringComparison.Ordinal);
-            // The smallest groom (a game character's, whose chunks stay in cache) also at one substep per frame, side by
-            // side with its 4-substep frame on 1 thread: the one-substep ratio of a scene that is not memory's.
+            // The smallest groom (about a game character's) also at one substep per frame, side by side with its 4-substep
+            // frame on 1 thread: the one-substep ratio of a groom whose chunks stay in the caches between frames.
             if (!reference && particles == smallest)
                 rows.AddRange(Interleaved([new(name, "fast", groom), new(name + ", 1 substep", "fast", groom, Tune: OneSubstep)],
                     SequentialDispatcher.Instance, 1, warmup, frames));
